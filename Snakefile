@@ -1,0 +1,26 @@
+# ringdamper: the design campaign of friction ring dampers as a Snakemake DAG (DESIGN §1).
+import sys
+from pathlib import Path
+
+from ringdamper.config import ConfigError, validate_config
+
+configfile: "config.yaml"
+
+try:
+    validate_config(config)
+except ConfigError as err:
+    sys.exit(str(err))
+
+RESULTS = config["results"]
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/sampling.smk"
+include: "workflow/rules/geometry.smk"
+include: "workflow/rules/modal.smk"
+
+
+rule all:
+    input:
+        f"{RESULTS}/samples.csv",
+        expand(f"{RESULTS}/geometry/{{gid}}/mesh.vtu", gid=geometry_ids()),
+        f"{RESULTS}/modal/resonance.yaml",

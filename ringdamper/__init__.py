@@ -1,0 +1,8 @@
+"""ringdamper: geometric design of friction ring dampers in blisks.
+
+Implements Sun, Denimal, Yuan, Salles, *Geometric design of friction ring dampers in blisks using
+nonlinear modal analysis and Kriging surrogate model*, Struct. Multidisc. Optim. 2022 (see
+``../shared/DESIGN.md`` for the project's choices). Every stage is importable without Snakemake.
+"""
+
+__version__ = "0.1.0"

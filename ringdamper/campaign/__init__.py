@@ -1,0 +1,1 @@
+"""Campaign-level stages: sampling, aggregation, surrogates, exploration, sensitivity."""

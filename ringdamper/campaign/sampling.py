@@ -1,0 +1,64 @@
+"""Design of experiments in the normalised shape space kappa in [-1, 1]^3 (paper §3.2.2).
+
+Training set: the full factorial {levels}^3 plus maximin Latin-hypercube points; validation set: the
+paper's named cases plus maximin LHS points. "Maximin" here: among ``lhs_candidates`` random LHS
+designs (scipy.stats.qmc), keep the one whose smallest distance to itself and to the points already
+chosen is largest (Morris & Mitchell 1995 criterion, brute-force search).
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pandas as pd
+from scipy.spatial.distance import cdist, pdist
+from scipy.stats import qmc
+
+N_KAPPA = 3
+
+
+def _min_distance(points: np.ndarray, existing: np.ndarray) -> float:
+    d = pdist(points).min() if len(points) > 1 else np.inf
+    if len(existing):
+        d = min(d, cdist(points, existing).min())
+    return d
+
+
+def maximin_lhs(n: int, existing: np.ndarray, rng: np.random.Generator, candidates: int) -> np.ndarray:
+    """``n`` LHS points in [-1, 1]^3 maximising the minimum distance (to themselves and ``existing``)."""
+    if n == 0:
+        return np.empty((0, N_KAPPA))
+    best, best_d = None, -np.inf
+    for _ in range(candidates):
+        u = qmc.LatinHypercube(d=N_KAPPA, rng=rng).random(n)
+        pts = 2.0 * u - 1.0
+        d = _min_distance(pts, existing)
+        if d > best_d:
+            best, best_d = pts, d
+    return best
+
+
+def make_samples(sampling: dict) -> pd.DataFrame:
+    """Table ``gid, kappa1, kappa2, kappa3, split`` of the campaign (training then validation)."""
+    rng = np.random.default_rng(sampling["seed"])
+    levels = sampling["factorial_levels"]
+    factorial = np.array(list(itertools.product(levels, repeat=N_KAPPA)), dtype=float)
+    train_lhs = maximin_lhs(sampling["n_lhs_training"], factorial, rng, sampling["lhs_candidates"])
+    training = np.vstack([factorial, train_lhs])
+    named = np.array(sampling["named_validation"], dtype=float).reshape(-1, N_KAPPA)
+    val_lhs = maximin_lhs(sampling["n_lhs_validation"], np.vstack([training, named]), rng,
+                          sampling["lhs_candidates"])
+    validation = np.vstack([named, val_lhs])
+    check_separation(training, validation, sampling["min_distance"])
+    rows = [(f"t{i:03d}", *k, "training") for i, k in enumerate(training)]
+    rows += [(f"v{i:03d}", *k, "validation") for i, k in enumerate(validation)]
+    return pd.DataFrame(rows, columns=["gid", "kappa1", "kappa2", "kappa3", "split"])
+
+
+def check_separation(training: np.ndarray, validation: np.ndarray, min_distance: float) -> None:
+    """Raise if two samples coincide (closer than ``min_distance``) anywhere in the design."""
+    everything = np.vstack([training, validation])
+    d = _min_distance(everything, np.empty((0, N_KAPPA)))
+    if d < min_distance:
+        raise ValueError(f"two samples are {d:.3g} apart, below sampling.min_distance = {min_distance}")

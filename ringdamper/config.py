@@ -1,0 +1,120 @@
+"""Load and validate the campaign configuration (DESIGN §5).
+
+Validation happens before any job runs: the JSON schema of ``workflow/schemas/`` (types, ranges,
+closed objects), then the cross-field rules a schema cannot express (the ring must fit under the rim
+overhang, the blade root must lie above the groove, ...). Every failure is one
+:class:`ConfigError` whose message names the field, the value and the allowed range.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+REPO = Path(__file__).resolve().parent.parent
+SCHEMA = REPO / "workflow" / "schemas" / "config.schema.yaml"
+DEFAULT_CONFIG = REPO / "config.yaml"
+
+
+class ConfigError(ValueError):
+    """A configuration value is invalid; the message names the field and the allowed range."""
+
+
+def _field_name(path) -> str:
+    name = ""
+    for part in path:
+        name += f"[{part}]" if isinstance(part, int) else (f".{part}" if name else str(part))
+    return name or "<config>"
+
+
+def _describe(error) -> str:
+    """One sentence for a jsonschema error: field, value, allowed range."""
+    field = _field_name(error.absolute_path)
+    schema = error.schema
+    value = error.instance
+    kind = error.validator
+    if kind == "additionalProperties":
+        allowed = sorted(schema.get("properties", {}))
+        extra = sorted(set(value) - set(allowed)) if isinstance(value, dict) else []
+        return f"{field}: unknown key(s) {extra}; allowed keys are {allowed}"
+    if kind == "required":
+        return f"{field}: {error.message}"
+    if kind in ("minimum", "maximum", "exclusiveMinimum", "exclusiveMaximum"):
+        lo = schema.get("minimum", schema.get("exclusiveMinimum"))
+        hi = schema.get("maximum", schema.get("exclusiveMaximum"))
+        lo_b = "[" if "minimum" in schema else "("
+        hi_b = "]" if "maximum" in schema else ")"
+        rng = f"{lo_b}{'-inf' if lo is None else lo}, {'+inf' if hi is None else hi}{hi_b}"
+        return f"{field} = {value!r} is out of range: allowed {rng}"
+    if kind == "type":
+        return f"{field} = {value!r} has the wrong type: expected {schema.get('type')}"
+    if kind == "enum":
+        return f"{field} = {value!r} is not allowed: choose one of {schema['enum']}"
+    return f"{field}: {error.message}"
+
+
+def _schema_errors(config: dict) -> list[str]:
+    import jsonschema
+
+    schema = yaml.safe_load(SCHEMA.read_text())
+    validator = jsonschema.Draft202012Validator(schema)
+    errors = sorted(validator.iter_errors(config), key=lambda e: list(map(str, e.absolute_path)))
+    return [_describe(e) for e in errors]
+
+
+def _geometry_errors(config: dict) -> list[str]:
+    """Cross-field rules of the sector geometry (DESIGN §2)."""
+    g = config["geometry"]
+    blade, disk, ring = g["blade"], g["disk"], g["ring"]
+    errors = []
+    root = blade["tip_radius"] - blade["height"]
+    lo_k1 = g["shape"]["kappa1_offsets"]
+    if not disk["bore_radius"] < disk["contact_radius"] - ring["thickness"]:
+        errors.append(
+            f"geometry.disk.bore_radius = {disk['bore_radius']} must be below the ring's lower surface "
+            f"(contact_radius - ring.thickness = {disk['contact_radius'] - ring['thickness']})")
+    if not root > disk["contact_radius"] + max(lo_k1):
+        errors.append(
+            f"geometry.blade: root radius tip_radius - height = {root:.6g} must exceed "
+            f"contact_radius + max(kappa1_offsets) = {disk['contact_radius'] + max(lo_k1):.6g}")
+    half_rim = disk["rim_axial_width"] / 2
+    web_edge = disk["web_thickness"] / 2
+    lo = web_edge + ring["width"] / 2
+    hi = half_rim - ring["width"] / 2
+    if not lo < ring["axial_center"] < hi:
+        errors.append(
+            f"geometry.ring.axial_center = {ring['axial_center']} must lie in ({lo:.6g}, {hi:.6g}) "
+            "so that the ring sits under the rim overhang, clear of the web")
+    if not blade["chord"] <= disk["rim_axial_width"] + 1e-12:
+        errors.append(f"geometry.blade.chord = {blade['chord']} must not exceed "
+                      f"geometry.disk.rim_axial_width = {disk['rim_axial_width']}")
+    for i in (1, 2, 3):
+        off = g["shape"][f"kappa{i}_offsets"]
+        if not (off[0] <= 0.0 == off[1] <= off[2]):
+            errors.append(f"geometry.shape.kappa{i}_offsets = {off} must be [<=0, 0, >=0]")
+    thinnest = ring["thickness"] + min(lo_k1) - max(g["shape"]["kappa2_offsets"][2],
+                                                    g["shape"]["kappa3_offsets"][2])
+    if thinnest <= 0:
+        errors.append(f"geometry.shape: the ring would have a non-positive thickness ({thinnest:.3g} m)")
+    return errors
+
+
+def validate_config(config: dict[str, Any]) -> dict[str, Any]:
+    """Validate ``config`` in place semantics; raise one :class:`ConfigError` listing every problem."""
+    errors = _schema_errors(config)
+    if not errors:
+        errors = _geometry_errors(config)
+    if errors:
+        raise ConfigError("invalid configuration:\n  - " + "\n  - ".join(errors))
+    return config
+
+
+def load_config(path: str | Path = DEFAULT_CONFIG) -> dict[str, Any]:
+    """Read a YAML configuration and validate it."""
+    with open(path) as fh:
+        config = yaml.safe_load(fh)
+    if not isinstance(config, dict):
+        raise ConfigError(f"{path}: the configuration must be a YAML mapping")
+    return validate_config(config)

@@ -1,0 +1,64 @@
+"""Bad configuration values give one clear message naming the field and the allowed range."""
+import re
+
+import pytest
+
+from ringdamper.config import ConfigError, validate_config
+
+
+def _error(config) -> str:
+    with pytest.raises(ConfigError) as info:
+        validate_config(config)
+    return str(info.value)
+
+
+def test_campaign_config_is_valid(campaign_config):
+    assert campaign_config["geometry"]["n_sectors"] == 30
+
+
+def test_kappa_out_of_range_names_field_and_range(config):
+    config["sampling"]["named_validation"][1][2] = 1.5
+    msg = _error(config)
+    assert "sampling.named_validation[1][2]" in msg
+    assert "1.5" in msg and "[-1, 1]" in msg
+
+
+def test_unknown_key_is_rejected(config):
+    config["mesh"]["n_theta_sides"] = 3
+    msg = _error(config)
+    assert "mesh" in msg and "n_theta_sides" in msg and "unknown key" in msg
+
+
+def test_wrong_type(config):
+    config["mesh"]["n_r_web"] = "four"
+    msg = _error(config)
+    assert "mesh.n_r_web" in msg and "wrong type" in msg
+
+
+@pytest.mark.parametrize("field", [("material", "young_modulus"), ("material", "density"),
+                                   ("geometry", "ring", "thickness")])
+def test_non_positive_physical_quantity(config, field):
+    node = config
+    for key in field[:-1]:
+        node = node[key]
+    node[field[-1]] = 0.0
+    msg = _error(config)
+    assert ".".join(field) in msg and "(0, +inf)" in msg
+
+
+def test_poisson_ratio_range(config):
+    config["material"]["poisson_ratio"] = 0.5
+    assert re.search(r"material\.poisson_ratio = 0\.5 is out of range: allowed \(-1, 0\.5\)", _error(config))
+
+
+def test_ring_must_fit_under_the_rim(config):
+    config["geometry"]["ring"]["axial_center"] = 0.0
+    msg = _error(config)
+    assert "geometry.ring.axial_center" in msg and "must lie in" in msg
+
+
+def test_every_problem_is_listed(config):
+    config["material"]["density"] = -1.0
+    config["operation"]["engine_order"] = 0
+    msg = _error(config)
+    assert "material.density" in msg and "operation.engine_order" in msg

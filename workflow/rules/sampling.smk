@@ -1,0 +1,11 @@
+checkpoint samples:
+    output:
+        f"{RESULTS}/samples.csv",
+    log:
+        f"{RESULTS}/logs/samples.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/samples.tsv"
+    conda:
+        "../../envs/campaign.yaml"
+    script:
+        "../../scripts/samples.py"

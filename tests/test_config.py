@@ -24,9 +24,9 @@ def test_kappa_out_of_range_names_field_and_range(config):
 
 
 def test_unknown_key_is_rejected(config):
-    config["mesh"]["n_theta_sides"] = 3
+    config["mesh"]["n_theta_per_thirds"] = 3
     msg = _error(config)
-    assert "mesh" in msg and "n_theta_sides" in msg and "unknown key" in msg
+    assert "mesh" in msg and "n_theta_per_thirds" in msg and "unknown key" in msg
 
 
 def test_wrong_type(config):

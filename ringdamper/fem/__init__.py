@@ -1,0 +1,1 @@
+"""Finite-element model of the sector: assembly, prestress, cyclic symmetry."""

@@ -1,0 +1,204 @@
+"""The FE model of one sector: nodes, DoF sets, contact pairs and the elastic matrices.
+
+Nodes are the scalar degrees of freedom of the chosen brick (8-node or 27-node Lagrange, scikit-fem);
+the vector DoFs of node i are 3i, 3i+1, 3i+2 (x, y, z). Linear elasticity, lumped nothing: K and M are
+the consistent matrices of both bodies (blisk and ring are disconnected in K, coupled only through
+the contact pairs).
+
+Contact pairs (DESIGN §2): one per node of the ring's upper surface inside the sector; nodes on the
+right cyclic cut are dropped (they are the next sector's left-cut nodes) and their tributary area is
+added to their left partners, so every pair is counted once. Local frame per pair: n = outward normal
+of the ring's upper surface r = R_c + delta1 b(theta) (from the ring towards the blisk), t1
+circumferential in the tangent plane, t2 = e_z; the relative displacement d = F (u_ring - u_blisk)
+with d_n > 0 closing the contact.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.spatial import cKDTree
+from skfem import Basis, ElementHex1, ElementHex2, FacetBasis, LinearForm, asm
+
+from ..geometry.sector import BODY_RING, MERGE_TOL, SectorMesh
+from ..geometry.shape import upper_slope
+from .elasticity import mass_matrix, tangent_stiffness
+
+INTORDER = {1: 3, 2: 5}  # Gauss rule exact for the mass matrix of each order (DESIGN §9)
+ELEMENTS = {1: ElementHex1, 2: ElementHex2}
+
+
+@dataclass
+class ContactPairs:
+    """Node-to-node contact pairs with their local frames."""
+
+    ring_node: np.ndarray    # (m,) node of the ring's upper surface
+    blisk_node: np.ndarray   # (m,) coincident groove node
+    frame: np.ndarray        # (m, 3, 3) rows n, t1, t2 (Cartesian components)
+    area: np.ndarray         # (m,) tributary area (m^2), consistent: integral of the shape function
+    position: np.ndarray     # (m, 3) at rest
+
+    def __len__(self) -> int:
+        return len(self.ring_node)
+
+
+@dataclass
+class SectorModel:
+    geometry: SectorMesh
+    basis: Basis              # scalar basis (vector DoFs of node a: 3a, 3a+1, 3a+2)
+    nodes: np.ndarray         # (n_nodes, 3) node coordinates
+    node_body: np.ndarray     # (n_nodes,) BODY_*
+    element_order: int
+    material: dict
+    n_sectors: int
+    fixed_nodes: np.ndarray   # clamped at the bore
+    left_nodes: np.ndarray    # matched: right = rotation(2 pi / N) of left, same body
+    right_nodes: np.ndarray
+    pairs: ContactPairs
+    tip_node: int
+    K: sp.csr_matrix
+    M: sp.csr_matrix
+
+    @property
+    def n_dofs(self) -> int:
+        return 3 * len(self.nodes)
+
+    @property
+    def sector_angle(self) -> float:
+        return 2.0 * np.pi / self.n_sectors
+
+    @property
+    def fixed_dofs(self) -> np.ndarray:
+        return node_dofs(self.fixed_nodes)
+
+    def response_dof(self) -> int:
+        """Z DoF of the blade-tip forcing / response node."""
+        return 3 * self.tip_node + 2
+
+    def part_mass(self, parts) -> sp.csr_matrix:
+        """Mass matrix of the elements of the given parts (for modal energy fractions)."""
+        elements = np.flatnonzero(np.isin(self.geometry.part, parts))
+        sub = Basis(self.geometry.mesh, self.basis.elem, elements=elements,
+                    intorder=INTORDER[self.element_order])
+        return mass_matrix(sub, self.material["density"])
+
+
+def node_dofs(nodes) -> np.ndarray:
+    """Vector DoFs (x, y, z interleaved) of the given nodes."""
+    nodes = np.asarray(nodes)
+    return (3 * nodes[:, None] + np.arange(3)).ravel()
+
+
+def _facets_within(mesh, vertices) -> np.ndarray:
+    return np.flatnonzero(np.all(np.isin(mesh.facets, vertices), axis=0))
+
+
+def _match(a_points, b_points, what: str) -> np.ndarray:
+    """Index into b of the point coinciding with each a point (raise if any is missing)."""
+    dist, idx = cKDTree(b_points).query(a_points)
+    if len(a_points) and dist.max() > MERGE_TOL:
+        raise RuntimeError(f"{what}: {np.sum(dist > MERGE_TOL)} nodes have no partner "
+                           f"(max distance {dist.max():.3g} m)")
+    return idx
+
+
+def _rotation_z(angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _cyclic_nodes(nodes, node_body, half_angle):
+    ang = np.arctan2(nodes[:, 1], nodes[:, 0])
+    left = np.flatnonzero(np.abs(ang + half_angle) < 1e-9)
+    right = np.flatnonzero(np.abs(ang - half_angle) < 1e-9)
+    if len(left) != len(right):
+        raise RuntimeError(f"cyclic faces differ: {len(left)} left vs {len(right)} right nodes")
+    rotated = nodes[left] @ _rotation_z(2 * half_angle).T
+    partner = np.empty(len(left), dtype=int)
+    for body in np.unique(node_body[left]):
+        lb = node_body[left] == body
+        rb = right[node_body[right] == body]
+        partner[lb] = rb[_match(rotated[lb], nodes[rb], "cyclic faces")]
+    return left, partner
+
+
+def _contact_frames(positions, geometry: SectorMesh) -> np.ndarray:
+    """Rows n, t1, t2 of each pair's frame from the analytic upper surface r = R_c + d1 b(theta)."""
+    theta = np.arctan2(positions[:, 1], positions[:, 0])
+    r = np.hypot(positions[:, 0], positions[:, 1])
+    a = upper_slope(theta, geometry.half_angle, geometry.deltas[0]) / r
+    e_r = np.column_stack([np.cos(theta), np.sin(theta), np.zeros_like(theta)])
+    e_t = np.column_stack([-np.sin(theta), np.cos(theta), np.zeros_like(theta)])
+    e_z = np.tile([0.0, 0.0, 1.0], (len(theta), 1))
+    norm = np.sqrt(1.0 + a**2)[:, None]
+    n = (e_r - a[:, None] * e_t) / norm
+    t1 = (e_t + a[:, None] * e_r) / norm
+    return np.stack([n, t1, e_z], axis=1)
+
+
+def _contact_pairs(geometry, scalar_basis, nodes, node_body, left, right) -> ContactPairs:
+    mesh = geometry.mesh
+    top_facets = _facets_within(mesh, geometry.sets["ring_top"])
+    groove_facets = _facets_within(mesh, geometry.sets["groove"])
+    ring_nodes = np.unique(scalar_basis.get_dofs(top_facets).all())
+    groove_nodes = np.unique(scalar_basis.get_dofs(groove_facets).all())
+    area_field = asm(LinearForm(lambda v, w: v),
+                     FacetBasis(mesh, scalar_basis.elem, facets=top_facets))
+    # fold the right cut onto the left cut: one pair per physical node pair
+    right_to_left = dict(zip(right, left))
+    area = area_field.copy()
+    keep = np.array([n not in right_to_left for n in ring_nodes])
+    for node in ring_nodes[~keep]:
+        area[right_to_left[node]] += area_field[node]
+    ring_nodes = ring_nodes[keep]
+    blisk_nodes = groove_nodes[_match(nodes[ring_nodes], nodes[groove_nodes], "contact pairs")]
+    assert np.all(node_body[ring_nodes] == BODY_RING) and np.all(node_body[blisk_nodes] != BODY_RING)
+    positions = nodes[ring_nodes]
+    return ContactPairs(ring_node=ring_nodes, blisk_node=blisk_nodes,
+                        frame=_contact_frames(positions, geometry), area=area[ring_nodes],
+                        position=positions)
+
+
+def build_model(geometry: SectorMesh, config: dict) -> SectorModel:
+    """Assemble K, M and every DoF set of the sector model."""
+    order = config["mesh"]["element_order"]
+    mat = config["material"]
+    scalar = Basis(geometry.mesh, ELEMENTS[order](), intorder=INTORDER[order])
+    nodes = scalar.doflocs.T.copy()
+    node_body = np.zeros(len(nodes), dtype=int)
+    node_body[np.unique(scalar.element_dofs[:, geometry.body == BODY_RING])] = BODY_RING
+    fixed = np.unique(scalar.get_dofs(_facets_within(geometry.mesh, geometry.sets["bore"])).all())
+    left, right = _cyclic_nodes(nodes, node_body, geometry.half_angle)
+    pairs = _contact_pairs(geometry, scalar, nodes, node_body, left, right)
+    tip = int(np.argmin(np.linalg.norm(nodes - geometry.vertices[geometry.tip_vertex], axis=1)))
+    return SectorModel(
+        geometry=geometry, basis=scalar, nodes=nodes, node_body=node_body, element_order=order,
+        material=mat, n_sectors=config["geometry"]["n_sectors"], fixed_nodes=fixed,
+        left_nodes=left, right_nodes=right, pairs=pairs, tip_node=tip,
+        K=tangent_stiffness(scalar, mat["young_modulus"], mat["poisson_ratio"]),
+        M=mass_matrix(scalar, mat["density"]))
+
+
+def relative_displacement_operator(model: SectorModel) -> sp.csr_matrix:
+    """G (3m x n_dofs): stacked [d_n, d_t1, d_t2] of every pair, d = F (u_ring - u_blisk)."""
+    pairs = model.pairs
+    m = len(pairs)
+    rows = np.repeat(np.arange(3 * m), 3)
+    ring_cols = (3 * pairs.ring_node[:, None, None] + np.arange(3)[None, None, :]).repeat(3, axis=1)
+    blisk_cols = (3 * pairs.blisk_node[:, None, None] + np.arange(3)[None, None, :]).repeat(3, axis=1)
+    vals = pairs.frame.reshape(-1)
+    G = sp.coo_matrix((np.concatenate([vals, -vals]),
+                       (np.concatenate([rows, rows]),
+                        np.concatenate([ring_cols.reshape(-1), blisk_cols.reshape(-1)]))),
+                      shape=(3 * m, model.n_dofs))
+    return G.tocsr()
+
+
+def contact_stiffness(model: SectorModel, kn, kt) -> sp.csr_matrix:
+    """Stuck linearised contact: G^T diag(kn, kt, kt) G (kn, kt per pair or scalar, N/m)."""
+    m = len(model.pairs)
+    k = np.column_stack([np.broadcast_to(kn, m), np.broadcast_to(kt, m), np.broadcast_to(kt, m)])
+    G = relative_displacement_operator(model)
+    return (G.T @ sp.diags(k.ravel()) @ G).tocsr()

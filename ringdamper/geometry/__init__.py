@@ -1,0 +1,1 @@
+"""Parametric geometry: kappa -> bump shapes, the structured hexahedral sector mesh, contact pairs."""

@@ -1,0 +1,220 @@
+"""Structured hexahedral mesh of one blisk sector and its ring sector (DESIGN §2 "Mesh").
+
+Every block is a tensor grid in logical coordinates mapped to Cartesian space (Z = rotation axis,
+the sector centred on the X axis, theta in [-pi/N, pi/N]):
+
+* web   (r, theta, z): bore radius -> contact radius, tapered linearly from hub_thickness at the
+  bore to web_thickness under the rim;
+* rim   (r, theta, z): contact radius -> blade root radius, |z| <= rim_axial_width / 2; inside the
+  ring's axial band its underside (the groove) follows the ring's upper surface, the offset fading
+  linearly to zero at the blade root;
+* blade (r, s, z): a flat plate of constant thickness (s = arc length, theta = s / r), chord along Z
+  (zero stagger), root on the rim's outer surface;
+* ring  (xi, theta, z): between its lower and upper surfaces (xi = 0 .. 1), a separate body whose
+  upper-surface nodes coincide with the groove nodes at rest.
+
+The theta grid has breakpoints at the ends and centres of the lower bumps (-+pi/N, -+2pi/3N,
+-+pi/3N) and at the blade faces. Node and element counts never depend on kappa: only radial coordinates move. The two cyclic faces
+theta = -+pi/N match node for node through a 2 pi / N rotation about Z. With 27-node bricks the mesh is
+isoparametric (scikit-fem ``MeshHex2``): every node, not only the vertices, is placed by its block's
+exact map, so cylinders and bumps are exact at the nodes and a bump's central node moves by exactly
+its delta_r. With 8-node bricks (``MeshHex1``) the geometry is trilinear.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.spatial import cKDTree
+from skfem import ElementHex1, ElementHex2, MeshHex1, MeshHex2
+from skfem.assembly import Dofs
+
+from .shape import lower_offset, shape_offsets, upper_offset
+
+PART_NAMES = ("web", "rim", "blade", "ring")
+PART_WEB, PART_RIM, PART_BLADE, PART_RING = range(4)
+BODY_BLISK, BODY_RING = 0, 1
+MERGE_TOL = 1e-9  # m
+
+# scikit-fem MeshHex1 local vertex order, as offsets in the (a, b, c) logical axes
+_HEX_CORNERS = np.array([(0, 0, 0), (0, 0, 1), (0, 1, 0), (1, 0, 0),
+                         (0, 1, 1), (1, 0, 1), (1, 1, 0), (1, 1, 1)])
+
+
+@dataclass
+class SectorMesh:
+    """Vertex mesh of the sector plus the vertex sets the model needs (indices into ``vertices``)."""
+
+    mesh: MeshHex1              # MeshHex2 for 27-node bricks; its first n_vertices nodes are vertices
+    vertices: np.ndarray        # (n_vertices, 3)
+    part: np.ndarray            # (n_elements,) PART_* of each element
+    vertex_body: np.ndarray     # (n_vertices,) BODY_* of each vertex
+    kappa: np.ndarray
+    deltas: tuple               # (delta1, delta2, delta3) m
+    half_angle: float           # pi / N
+    sets: dict = field(default_factory=dict)   # name -> vertex indices
+    tip_vertex: int = -1        # forcing / response vertex (blade tip, leading edge)
+
+    @property
+    def body(self) -> np.ndarray:
+        return np.where(self.part == PART_RING, BODY_RING, BODY_BLISK)
+
+
+def _segment(a: float, b: float, n: int) -> np.ndarray:
+    return np.linspace(a, b, n + 1)
+
+
+def _join(*segments) -> np.ndarray:
+    """Concatenate sorted breakpoint arrays that share their end points."""
+    out = np.concatenate(segments)
+    return np.unique(np.round(out, 15))
+
+
+def _block(a, b, c, to_xyz):
+    """Tensor grid block: points (n, 3) from logical lines a, b, c, hexes (ne, 8), logical coords."""
+    A, B, C = np.meshgrid(a, b, c, indexing="ij")
+    logical = np.column_stack([A.ravel(), B.ravel(), C.ravel()])
+    points = np.column_stack(to_xyz(A.ravel(), B.ravel(), C.ravel()))
+    na, nb, nc = len(a), len(b), len(c)
+    idx = np.arange(na * nb * nc).reshape(na, nb, nc)
+    i, j, k = np.meshgrid(np.arange(na - 1), np.arange(nb - 1), np.arange(nc - 1), indexing="ij")
+    hexes = np.stack([idx[i + di, j + dj, k + dk].ravel() for di, dj, dk in _HEX_CORNERS], axis=1)
+    return points, hexes, logical
+
+
+def _cartesian(r, theta, z):
+    return r * np.cos(theta), r * np.sin(theta), z
+
+
+def _trilinear_weights(ref: np.ndarray) -> np.ndarray:
+    """(n_ref, 8) trilinear shape functions of the MeshHex1 vertices at reference points."""
+    w = np.ones((len(ref), 8))
+    for v, corner in enumerate(ElementHex1.doflocs):  # the element's reference vertex positions
+        for axis in range(3):
+            w[:, v] *= ref[:, axis] if corner[axis] else 1.0 - ref[:, axis]
+    return w
+
+
+def _isoparametric(vertices, hexes, element_logical, element_block, maps) -> MeshHex2:
+    """27-node mesh whose nodes are placed by each element's block map (exact geometry at nodes)."""
+    linear = MeshHex1(vertices.T.copy(), hexes.T.astype(np.int32).copy())
+    dofs = Dofs(linear, ElementHex2())
+    weights = _trilinear_weights(ElementHex2.doflocs)             # (27, 8)
+    doflocs = np.zeros((3, dofs.N))
+    for block, to_xyz in enumerate(maps):
+        elems = np.flatnonzero(element_block == block)
+        logical = np.einsum("nv,evk->enk", weights, element_logical[elems])  # (e, 27, 3)
+        xyz = np.stack(to_xyz(*logical.reshape(-1, 3).T), axis=1).reshape(len(elems), 27, 3)
+        doflocs[:, dofs.element_dofs[:, elems].T.ravel()] = xyz.reshape(-1, 3).T
+    return MeshHex2(doflocs, linear.t)
+
+
+def _merge(points: np.ndarray) -> np.ndarray:
+    """Representative index (lowest index within MERGE_TOL) for every point."""
+    tree = cKDTree(points)
+    rep = np.arange(len(points))
+    for i, j in sorted(tree.query_pairs(MERGE_TOL)):
+        rep[j] = min(rep[j], rep[i])
+    return rep[rep]
+
+
+def build_sector(config: dict, kappa) -> SectorMesh:
+    """Mesh the sector for shape ``kappa`` with the geometry and mesh sections of ``config``."""
+    g, mcfg = config["geometry"], config["mesh"]
+    blade, disk, ring = g["blade"], g["disk"], g["ring"]
+    kappa = np.asarray(kappa, dtype=float)
+    d1, d2, d3 = shape_offsets(kappa, g["shape"])
+    th = np.pi / g["n_sectors"]
+    r_bore, r_c = disk["bore_radius"], disk["contact_radius"]
+    r_root, r_tip = blade["tip_radius"] - blade["height"], blade["tip_radius"]
+    t_b, chord = blade["thickness"], blade["chord"]
+    half_w, web = disk["rim_axial_width"] / 2, disk["web_thickness"] / 2
+    z_lo, z_hi = ring["axial_center"] - ring["width"] / 2, ring["axial_center"] + ring["width"] / 2
+
+    th_b = 0.5 * t_b / r_root
+    # breakpoints at the lower bumps' ends and centres (+-th/3, +-2th/3) and at the blade faces
+    n3 = mcfg["n_theta_per_third"]
+    side = [_segment(th / 3, th_b, n3), _segment(2 * th / 3, th / 3, n3), _segment(th, 2 * th / 3, n3)]
+    theta = _join(*[-seg for seg in side], _segment(-th_b, th_b, mcfg["n_blade_thickness"]), *side)
+    z_rim = _join(_segment(-half_w, -web, mcfg["n_z_front"]), _segment(-web, web, mcfg["n_z_web"]),
+                  _segment(web, z_lo, mcfg["n_z_gap"]), _segment(z_lo, z_hi, mcfg["n_z_ring"]),
+                  _segment(z_hi, half_w, mcfg["n_z_back"]), [-chord / 2, chord / 2])
+    z_web = z_rim[(z_rim >= -web - MERGE_TOL) & (z_rim <= web + MERGE_TOL)]
+    z_ring = z_rim[(z_rim >= z_lo - MERGE_TOL) & (z_rim <= z_hi + MERGE_TOL)]
+    z_blade = z_rim[np.abs(z_rim) <= chord / 2 + MERGE_TOL]
+    s_blade = _segment(-t_b / 2, t_b / 2, mcfg["n_blade_thickness"])
+
+    def in_band(z):
+        return (z >= z_lo - MERGE_TOL) & (z <= z_hi + MERGE_TOL)
+
+    def rim_map(r, t, z):
+        fade = (r_root - r) / (r_root - r_c)
+        return _cartesian(r + upper_offset(t, th, d1) * in_band(z) * fade, t, z)
+
+    def ring_map(xi, t, z):
+        r_up = r_c + upper_offset(t, th, d1)
+        r_low = r_c - ring["thickness"] + lower_offset(t, th, d2, d3)
+        return _cartesian(r_low + xi * (r_up - r_low), t, z)
+
+    taper = disk["hub_thickness"] / disk["web_thickness"] - 1.0
+
+    def web_map(r, t, z):
+        return _cartesian(r, t, z * (1.0 + taper * (r_c - r) / (r_c - r_bore)))
+
+    def blade_map(r, s, z):
+        return _cartesian(r, s / r, z)
+
+    maps = [  # (part, map), in PART_* order
+        (PART_WEB, web_map), (PART_RIM, rim_map), (PART_BLADE, blade_map), (PART_RING, ring_map)]
+    lines = {
+        PART_WEB: (_segment(r_bore, r_c, mcfg["n_r_web"]), theta, z_web),
+        PART_RIM: (_segment(r_c, r_root, mcfg["n_r_rim"]), theta, z_rim),
+        PART_BLADE: (_segment(r_root, r_tip, mcfg["n_blade_height"]), s_blade, z_blade),
+        PART_RING: (_segment(0.0, 1.0, mcfg["n_r_ring"]), theta, z_ring),
+    }
+    blocks = [(part, _block(*lines[part], to_xyz)) for part, to_xyz in maps]
+    points, hexes, parts, logicals, owners = [], [], [], [], []
+    offset = 0
+    for part, (p, h, lg) in blocks:
+        points.append(p)
+        hexes.append(h + offset)
+        parts.append(np.full(len(h), part))
+        logicals.append(lg)
+        owners.append(np.full(len(p), part))
+        offset += len(p)
+    points, hexes = np.vstack(points), np.vstack(hexes)
+    logical, owner = np.vstack(logicals), np.concatenate(owners)
+    element_part = np.concatenate(parts)
+    element_logical = logical[hexes]  # (e, 8, 3), before merging: each element in its own block
+
+    # merge coincident vertices inside the blisk only (the ring stays a separate body)
+    rep = np.arange(len(points))
+    blisk = np.flatnonzero(owner != PART_RING)
+    rep[blisk] = blisk[_merge(points[blisk])]
+    used, new_index = np.unique(rep, return_inverse=True)
+    hexes = new_index[hexes]
+    points, logical, owner = points[used], logical[used], owner[used]
+
+    if mcfg["element_order"] == 2:
+        mesh = _isoparametric(points, hexes, element_logical, element_part,
+                              [to_xyz for _, to_xyz in maps])
+    else:
+        mesh = MeshHex1(points.T.copy(), hexes.T.astype(np.int32).copy())
+    r = np.hypot(points[:, 0], points[:, 1])
+    ang = np.arctan2(points[:, 1], points[:, 0])
+    is_ring = owner == PART_RING
+    sets = {
+        "bore": np.flatnonzero(~is_ring & (np.abs(r - r_bore) < MERGE_TOL)),
+        "left": np.flatnonzero(np.abs(ang + th) < 1e-12),
+        "right": np.flatnonzero(np.abs(ang - th) < 1e-12),
+        "ring_top": np.flatnonzero(is_ring & (np.abs(logical[:, 0] - 1.0) < 1e-12)),
+        "groove": np.flatnonzero((owner == PART_RIM) & (np.abs(logical[:, 0] - r_c) < MERGE_TOL)
+                                 & in_band(points[:, 2])),
+    }
+    tip = np.flatnonzero((owner == PART_BLADE) & (np.abs(logical[:, 0] - r_tip) < MERGE_TOL)
+                         & (np.abs(logical[:, 1] + t_b / 2) < MERGE_TOL)
+                         & (np.abs(points[:, 2] + chord / 2) < MERGE_TOL))
+    return SectorMesh(mesh=mesh, vertices=points, part=element_part,
+                      vertex_body=np.where(is_ring, BODY_RING, BODY_BLISK), kappa=kappa,
+                      deltas=(d1, d2, d3), half_angle=th, sets=sets, tip_vertex=int(tip[0]))

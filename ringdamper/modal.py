@@ -92,14 +92,17 @@ class FamilyClassifier:
         return {0: "1B", 1: "2B"}.get(changes, "blade")
 
 
-def _number_disk_families(labels: list[str]) -> list[str]:
-    """Successive disk-dominated modes of one ND are the families 1D, 2D, 3D, ..."""
-    count = 0
-    out = []
+def _number_families(labels: list[str]) -> list[str]:
+    """Within one ND: successive disk-dominated modes are 1D, 2D, 3D, ...; a blade family name goes
+    to its lowest mode only (higher modes of the same shape class, e.g. 2T, stay "blade")."""
+    count, seen, out = 0, set(), []
     for lab in labels:
         if lab == "1D":
             count += 1
             lab = f"{count}D"
+        elif lab in seen:
+            lab = "blade"
+        seen.add(lab)
         out.append(lab)
     return out
 
@@ -110,7 +113,7 @@ def labelled_modes(model: SectorModel, K: sp.spmatrix, nd: int, n_modes: int,
     modes = cyclic_modes(model, K, model.M, nd, n_modes)
     phis = modes.shapes.T
     blade = np.array([classifier.blade_energy_fraction(K, phi) for phi in phis])
-    labels = _number_disk_families([classifier.label(K, phi) for phi in phis])
+    labels = _number_families([classifier.label(K, phi) for phi in phis])
     return modes.frequency, labels, blade
 
 

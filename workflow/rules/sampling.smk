@@ -1,4 +1,4 @@
-checkpoint samples:
+rule samples:
     output:
         f"{RESULTS}/samples.csv",
     log:

@@ -1,0 +1,84 @@
+"""Benchmarks (``make bench``): wall time, peak memory and sizes of each stage, written to files.
+
+Speed is measured here, never asserted in tests (DESIGN §8). Each benchmark runs in its own process
+so that peak memory (ru_maxrss) belongs to it alone.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import multiprocessing as mp
+import platform
+import resource
+import time
+from pathlib import Path
+
+from .config import load_config
+
+
+def _fe_chain(config: dict) -> dict:
+    """Mesh + assembly + ND diagram + Campbell of the default ring (the modal stage)."""
+    from .calibration import stuck_contact_stiffness
+    from .fem.model import build_model
+    from .geometry.sector import build_sector
+    from .modal_stage import run_modal_stage
+
+    out = {}
+    t = time.perf_counter()
+    sector = build_sector(config, (0.0, 0.0, 0.0))
+    out["mesh_s"] = time.perf_counter() - t
+    t = time.perf_counter()
+    model = build_model(sector, config)
+    stuck_contact_stiffness(model, config["contact"])
+    out["assembly_s"] = time.perf_counter() - t
+    out.update(dofs=model.n_dofs, elements=int(sector.mesh.t.shape[1]), pairs=len(model.pairs),
+               element_order=model.element_order)
+    t = time.perf_counter()
+    res = run_modal_stage(config)
+    out["modal_stage_s"] = time.perf_counter() - t
+    out["crossing_speed_rpm"] = res.resonance["speed_rpm"]
+    out["crossing_frequency_hz"] = res.resonance["frequency_hz"]
+    return out
+
+
+def _mesh_convergence(config: dict) -> dict:
+    from .convergence import mesh_study
+
+    return {"levels": mesh_study(config)}
+
+
+BENCHMARKS = {"fe_model": _fe_chain, "mesh_convergence": _mesh_convergence}
+
+
+def _run_one(name, config, queue):
+    start = time.perf_counter()
+    result = BENCHMARKS[name](config)
+    result["total_wall_s"] = time.perf_counter() - start
+    result["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    queue.put(result)
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--out", default="results/benchmarks")
+    parser.add_argument("--config", default=None)
+    parser.add_argument("--only", nargs="*", choices=sorted(BENCHMARKS))
+    args = parser.parse_args(argv)
+    config = load_config(args.config) if args.config else load_config()
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    ctx = mp.get_context("spawn")
+    for name in args.only or BENCHMARKS:
+        queue = ctx.Queue()
+        proc = ctx.Process(target=_run_one, args=(name, config, queue))
+        proc.start()
+        result = queue.get()
+        proc.join()
+        result["machine"] = {"cpus": mp.cpu_count(), "python": platform.python_version()}
+        (out / f"{name}.json").write_text(json.dumps(result, indent=2))
+        print(f"{name}: {json.dumps(result)}")
+
+
+if __name__ == "__main__":
+    main()

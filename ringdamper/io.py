@@ -1,0 +1,73 @@
+"""File contracts between the stages (DESIGN §4), in one place.
+
+NetCDF through xarray: SI units, and every data variable and coordinate carries ``units`` and
+``long_name`` (checked on write). Meshes and fields for ParaView through meshio (VTU, 27-node bricks
+written as VTK triquadratic hexahedra).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+import yaml
+
+
+class ContractError(ValueError):
+    """A dataset violates the file contract (missing units or long_name)."""
+
+
+def variable(dims, data, units: str, long_name: str, **attrs):
+    """(dims, data, attrs) tuple for xarray with the mandatory attributes."""
+    return (dims, np.asarray(data), {"units": units, "long_name": long_name, **attrs})
+
+
+def check_contract(ds: xr.Dataset) -> None:
+    missing = [name for name in list(ds.data_vars) + list(ds.coords)
+               if not {"units", "long_name"} <= set(ds[name].attrs)]
+    if missing:
+        raise ContractError(f"variables without units/long_name: {missing}")
+
+
+def write_netcdf(ds: xr.Dataset, path) -> None:
+    check_contract(ds)
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    ds.to_netcdf(path, engine="netcdf4")
+
+
+def read_netcdf(path) -> xr.Dataset:
+    with xr.open_dataset(path, engine="netcdf4") as ds:
+        return ds.load()
+
+
+def write_yaml(data: dict, path) -> None:
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w") as fh:
+        yaml.safe_dump(data, fh, sort_keys=False)
+
+
+def write_vtu(model, path, point_data: dict | None = None, cell_data: dict | None = None) -> None:
+    """Mesh of a SectorModel (nodes = the model's nodes) with named fields, for ParaView."""
+    from skfem.io.meshio import to_meshio
+
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    cells = {k: [np.asarray(v)] for k, v in (cell_data or {}).items()}
+    to_meshio(model.geometry.mesh, point_data=point_data or {}, cell_data=cells).write(path)
+
+
+def mesh_fields(model) -> tuple[dict, dict]:
+    """Point and cell fields of the mesh file: body, contact pair id, local normal, part id."""
+    n = len(model.nodes)
+    pair_id = np.full(n, -1)
+    pairs = model.pairs
+    pair_id[pairs.ring_node] = np.arange(len(pairs))
+    pair_id[pairs.blisk_node] = np.arange(len(pairs))
+    normal = np.zeros((n, 3))
+    normal[pairs.ring_node] = pairs.frame[:, 0]
+    normal[pairs.blisk_node] = pairs.frame[:, 0]
+    forcing = np.zeros(n, dtype=int)
+    forcing[model.tip_node] = 1
+    return ({"body": model.node_body, "pair_id": pair_id, "contact_normal": normal,
+             "forcing_node": forcing},
+            {"part": model.geometry.part})

@@ -1,0 +1,4 @@
+"""Figures of the campaign (matplotlib, Agg backend)."""
+import matplotlib
+
+matplotlib.use("Agg")

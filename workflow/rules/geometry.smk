@@ -1,0 +1,13 @@
+rule mesh:
+    output:
+        f"{RESULTS}/geometry/{{gid}}/mesh.vtu",
+    params:
+        kappa=kappa_of,
+    log:
+        f"{RESULTS}/logs/mesh/{{gid}}.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/mesh/{{gid}}.tsv"
+    conda:
+        "../../envs/fem.yaml"
+    script:
+        "../../scripts/mesh.py"

@@ -1,0 +1,17 @@
+rule modal:
+    output:
+        nd=f"{RESULTS}/modal/nd_diagram.nc",
+        campbell=f"{RESULTS}/modal/campbell.nc",
+        resonance=f"{RESULTS}/modal/resonance.yaml",
+        nd_png=report(f"{RESULTS}/figures/nd_diagram.png", category="Modal analysis"),
+        campbell_png=report(f"{RESULTS}/figures/campbell.png", category="Modal analysis"),
+        modes_png=report(f"{RESULTS}/figures/modes_target_nd.png", category="Modal analysis"),
+        modes_vtu=directory(f"{RESULTS}/modal/modes"),
+    log:
+        f"{RESULTS}/logs/modal.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/modal.tsv"
+    conda:
+        "../../envs/fem.yaml"
+    script:
+        "../../scripts/modal.py"

@@ -33,11 +33,13 @@ so the unknown is ``μ`` (m values) and ``F`` (m × m, dense, symmetric) is the 
 equilibrium residual of (1) is ``r = Gnᵀ ρ`` with ``ρ = N(d_n) − S d_n − μ``; it is the quantity
 tested for convergence (‖r‖₂ ≤ tol·‖f‖₂, absolute when f = 0), never an iteration count.
 
-* Penalty: semi-smooth Newton on ``ρ(μ) = 0`` with ``s = kn``. ``ρ`` is the (negative,
-  preconditioned) gradient of the convex potential energy restricted to the affine set (5), so an
-  exact line search on that piecewise-quadratic energy makes the iteration globally convergent;
-  a singular Newton matrix (a mechanism in the current active set) falls back to the all-closed
-  direction ``Δμ = ρ``, which is always a descent direction.
+* Penalty: semi-smooth Newton on ``ρ(μ) = 0`` with ``s = kn``, started with the pairs that the
+  all-closed solution pushes towards closing (a > 0) closed at their gap. ``ρ`` is the (negative, preconditioned) gradient of the convex
+  potential energy restricted to the affine set (5), so an exact line search on that
+  piecewise-quadratic energy makes the iteration globally convergent. When the open pairs leave
+  a mechanism (singular Newton matrix) they get a tiny stiffness ε·kn in the Newton matrix only:
+  the step then moves the free rigid mode until a pair touches; a full step along such a
+  direction means the load pulls a body away from every contact (no equilibrium: status 1).
 * Lagrange: primal–dual active set = semi-smooth Newton on ``min(N, s·g) = 0`` (Hintermüller, Ito
   & Kunisch 2002), started from the penalty solution with ``kn = s``; if an active set repeats
   (cycling), the Newton matrix is singular or the iteration budget is spent, it falls back to the
@@ -65,8 +67,10 @@ STATUS_NAMES = {CONVERGED: "converged", NOT_CONVERGED: "not converged",
                 INVALID_INPUT: "invalid physical input", SINGULAR: "singular system"}
 
 METHODS = ("penalty", "lagrange")
-PIVOT_TOL = 1e-12  # smallest accepted |LU pivot| / |diagonal entry| of A0 (rigid mode detector)
+FORWARD_ERROR_TOL = 1e-2  # A0 is singular when a solve with a known answer is worse than this
 RCOND_TOL = 1e-13  # smallest accepted reciprocal condition number of a dense Newton matrix
+ROUNDOFF = 1e3 * np.finfo(float).eps  # relative round-off floor of a contact-space residual
+STALL_ITER = 3  # full exact Newton steps in an unchanged active set before giving up
 MECHANISM_EPS = 1e-6  # relative stiffness given to open pairs when they leave a mechanism
 
 
@@ -184,14 +188,25 @@ class _ContactSpace:
               + Gt.T @ Gt.multiply(np.tile(kt, 2)[:, None])).tocsc()
         self.lu = spla.splu(A0, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
                             options={"SymmetricMode": True})
-        self.singular = _smallest_pivot_ratio(self.lu, A0) < PIVOT_TOL
-        if self.singular:
-            return
-        W = self.lu.solve(self.Gn.T.toarray()) if self.Gn.shape[0] else np.zeros((K.shape[0], 0))
-        F = self.Gn @ W
+        # One solve with a known answer z rides along with the m columns A0⁻¹ Gnᵀ.
+        z = np.random.default_rng(0).standard_normal(A0.shape[0])
+        X = self.lu.solve(np.column_stack([self.Gn.T.toarray(), A0 @ z, f]))
+        self.forward_error = float(np.linalg.norm(X[:, -2] - z) / np.linalg.norm(z))
+        F = self.Gn @ X[:, :-2]
         self.F = 0.5 * (F + F.T)
-        self.u_f = self.lu.solve(f)
+        self.u_f = X[:, -1]
         self.a = self.Gn @ self.u_f
+
+    @property
+    def singular(self):
+        """A0 is (numerically) singular: the known-answer solve lost all accuracy."""
+        return not self.forward_error <= FORWARD_ERROR_TOL
+
+    def start(self, g0, s):
+        """Initial μ: pairs that the all-closed solution ``a`` pushes towards closing (a > 0)
+        start closed at their gap (μ = −s·g0), the others open at ``a`` (μ = −s·a), so that a
+        pressed ring starts restrained and f = 0 starts (and ends) at u = 0 exactly."""
+        return -s * np.where(self.a > 0, g0, self.a)
 
     def normal_displacement(self, mu):
         """d_n = a − F μ, eq. (5)."""
@@ -205,14 +220,10 @@ class _ContactSpace:
         """‖Gnᵀ ρ‖₂: the nodal force residual of (1) for the contact-space residual ρ."""
         return float(np.linalg.norm(self.Gn.T @ rho))
 
-
-def _smallest_pivot_ratio(lu, A):
-    """min_i |U_ii| / |A_ii| (matched through the column permutation): ≈ eps for a rigid mode."""
-    diag = np.abs(A.diagonal())[lu.perm_c]
-    pivots = np.abs(lu.U.diagonal())
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(diag > 0, pivots / diag, pivots)
-    return float(ratio.min()) if ratio.size else 1.0
+    def tolerance(self, tol_abs, *terms):
+        """max(tol_abs, round-off floor): a residual summed from ``terms`` cannot be resolved
+        below ROUNDOFF·‖Gnᵀ Σ|term|‖ (this makes f = 0 with g0 ≠ 0 and very stiff s converge)."""
+        return max(tol_abs, ROUNDOFF * self.force_norm(sum(np.abs(t) for t in terms)))
 
 
 def _solve_dense(A, b):
@@ -270,18 +281,29 @@ def _newton_direction(F, kn, closed, rho):
 
 
 def _penalty_newton(space, g, kn, mu, tol_abs, max_iter):
-    """Globalised semi-smooth Newton for ρ(μ) = 0 with the penalty law (2) (s must equal kn)."""
-    F = space.F
+    """Globalised semi-smooth Newton for ρ(μ) = 0 with the penalty law (2) (s must equal kn).
+
+    In exact arithmetic a full exact Newton step that keeps the active set lands on the
+    solution; if that happens STALL_ITER times in a row without meeting the tolerance, the
+    tolerance is below the round-off floor and the iteration stops (status 1).
+    """
+    F, repeats, previous = space.F, 0, None
     for it in range(max_iter + 1):
         d = space.normal_displacement(mu)
         rho = _penalty_residual(d, mu, g, kn)
         if not np.all(np.isfinite(rho)):
             return _Outcome(mu, it, NOT_CONVERGED, "non-finite residual in the penalty iteration")
-        if space.force_norm(rho) <= tol_abs:
+        residual = space.force_norm(rho)
+        if residual <= space.tolerance(tol_abs, kn * np.maximum(d - g, 0.0), kn * d, mu):
             return _Outcome(mu, it)
+        closed = d > g
+        repeats = repeats + 1 if previous is not None and np.array_equal(closed, previous) else 0
+        if repeats >= STALL_ITER:
+            return _Outcome(mu, it, NOT_CONVERGED, f"stalled at residual {residual:.2e} > "
+                            f"{tol_abs:.2e} (round-off floor: loosen tol)")
         if it == max_iter:
             break
-        dmu, exact = _newton_direction(F, kn, d > g, rho)
+        dmu, exact = _newton_direction(F, kn, closed, rho)
         dd = -F @ dmu
         if dd @ rho >= 0.0:
             return _Outcome(mu, it, NOT_CONVERGED,
@@ -290,6 +312,7 @@ def _penalty_newton(space, g, kn, mu, tol_abs, max_iter):
         if not exact and t == 1.0:  # a free rigid mode moved ~1/ε too far and touched nothing
             return _Outcome(mu, it + 1, NOT_CONVERGED, "no equilibrium: the load moves a body "
                             "away from every contact (unrestrained rigid-body mode)")
+        previous = closed if exact and t == 1.0 else None
         mu = mu + t * dmu
     return _Outcome(mu, max_iter, NOT_CONVERGED,
                     f"penalty Newton did not converge in {max_iter} iterations")
@@ -303,12 +326,18 @@ def _ncp_residual(space, mu, g0, s):
     return np.minimum(N, sg), sg < N
 
 
+def _ncp_converged(space, phi, mu, g0, s, tol_abs):
+    """‖Gnᵀ min(N, s·g)‖ within the tolerance (or the round-off floor of its terms)."""
+    d = space.normal_displacement(mu)
+    return space.force_norm(phi) <= space.tolerance(tol_abs, mu, s * d, s * g0)
+
+
 def _active_set(space, g0, s, mu, tol_abs, max_iter):
     """Primal–dual active set (semi-smooth Newton on min(N, s·g) = 0) with cycling detection."""
     F, eye, seen = space.F, np.eye(len(mu)), set()
     for it in range(max_iter + 1):
         phi, active = _ncp_residual(space, mu, g0, s)
-        if space.force_norm(phi) <= tol_abs:
+        if _ncp_converged(space, phi, mu, g0, s, tol_abs):
             return _Outcome(mu, it)
         key = active.tobytes()
         if key in seen:
@@ -336,7 +365,7 @@ def _augmented_lagrangian(space, g0, s, mu, tol_abs, max_iter):
             return _Outcome(inner.mu, iterations, inner.status, inner.reason)
         mu = inner.mu
         phi, _ = _ncp_residual(space, mu, g0, s)
-        if space.force_norm(phi) <= tol_abs:
+        if _ncp_converged(space, phi, mu, g0, s, tol_abs):
             return _Outcome(mu, iterations)
         N = np.maximum(mu + s * space.normal_displacement(mu), 0.0)
     return _Outcome(mu, iterations, NOT_CONVERGED,
@@ -345,7 +374,7 @@ def _augmented_lagrangian(space, g0, s, mu, tol_abs, max_iter):
 
 def _lagrange(space, g0, s, tol_abs, max_iter):
     """Exact contact (3): penalty start (kn = s), active-set Newton, augmented-Lagrangian fallback."""
-    start = _penalty_newton(space, g0, s, -s * g0, tol_abs, max_iter)
+    start = _penalty_newton(space, g0, s, space.start(g0, s), tol_abs, max_iter)
     if start.status != CONVERGED:
         return start
     pdas = _active_set(space, g0, s, start.mu, tol_abs, max_iter)
@@ -397,8 +426,8 @@ def _failure(K, f, G, g0, kt, status, reason, method, iterations=0):
         residual=np.nan, complementarity=np.nan, status=status, reason=reason, method=method)
 
 
-def solve_static_contact(K, f, G, g0, kn, kt, *, method="penalty", tol=1e-10, max_iter=100,
-                         scale=None) -> StaticContactResult:
+def solve_static_contact(K, f, G, g0, kn, kt, *, method="penalty", tol=1e-10,
+                         max_iter=100) -> StaticContactResult:
     """Static equilibrium (1) with the penalty (2) or exact (3) normal law; see the module docstring.
 
     Parameters
@@ -409,13 +438,12 @@ def solve_static_contact(K, f, G, g0, kn, kt, *, method="penalty", tol=1e-10, ma
     G : scipy.sparse (3m, n), rows 3p, 3p+1, 3p+2 give (d_n, d_t1, d_t2) of pair p, d_n > 0 closing.
     g0 : (m,) initial gaps ≥ 0.
     kn : scalar or (m,) normal penalty stiffness (N/m), > 0. Required for ``"penalty"``; for
-        ``"lagrange"`` it is only the scale ``s`` of (4) and of the NCP (may be None).
+        ``"lagrange"`` it is only the scale ``s`` of (4) and of the NCP, which does not change
+        the solution (None: s = 100·n_pᵀ K n_p, a hundred times the local stiffness).
     kt : scalar or (m,) tangential sticking stiffness (N/m), ≥ 0, used by both methods.
     method : ``"penalty"`` or ``"lagrange"``.
     tol : convergence tolerance on ‖K u + Gᵀλ − f‖₂ / ‖f‖₂ (absolute when f = 0).
     max_iter : iteration guard of every Newton / active-set / augmented-Lagrangian loop.
-    scale : (m,) or scalar stiffness scale s for ``"lagrange"`` (default: kn if given, else
-        100·n_pᵀ K n_p per pair).
 
     Returns a :class:`StaticContactResult`; physics failures give ``status ≠ 0`` and a reason.
     Raises ``ValueError`` only for ill-shaped arguments or an unknown method.
@@ -424,15 +452,7 @@ def solve_static_contact(K, f, G, g0, kn, kt, *, method="penalty", tol=1e-10, ma
     problem = _physics_problem(K, f, G, g0, kn, kt)
     if problem is not None:
         return _failure(K, f, G, g0, kt, INVALID_INPUT, problem, method)
-    m = g0.size
-    if method == "penalty":
-        s = kn
-    elif scale is not None:
-        s = _per_pair(scale, m, "scale")
-        if not np.all(np.isfinite(s) & (s > 0)):
-            return _failure(K, f, G, g0, kt, INVALID_INPUT, "scale must be finite and > 0", method)
-    else:
-        s = kn if kn is not None else 100.0 * _default_scale(K, G[0::3])
+    s = kn if kn is not None else 100.0 * _default_scale(K, G[0::3])
     try:
         space = _ContactSpace(K, f, G, s, kt)
     except RuntimeError as err:  # SuperLU: "Factor is exactly singular"
@@ -440,11 +460,11 @@ def solve_static_contact(K, f, G, g0, kn, kt, *, method="penalty", tol=1e-10, ma
                         f"closed (factorisation failed: {err})", method)
     if space.singular:
         return _failure(K, f, G, g0, kt, SINGULAR, "structure not restrained with every contact "
-                        "closed (rigid-body mode: a body without enough contact or supports)",
-                        method)
+                        "closed (rigid-body mode: a body without enough contact or supports; "
+                        f"known-answer solve error {space.forward_error:.1e})", method)
     tol_abs = tol * float(np.linalg.norm(f))
     if method == "penalty":
-        out = _penalty_newton(space, g0, kn, -kn * g0, tol_abs, max_iter)
+        out = _penalty_newton(space, g0, s, space.start(g0, s), tol_abs, max_iter)
     else:
         out = _lagrange(space, g0, s, tol_abs, max_iter)
     u = space.displacement(out.mu)

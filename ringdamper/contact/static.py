@@ -16,7 +16,7 @@ and one of two normal laws:
 
 * ``method="lagrange"`` (exact unilateral contact)::
 
-      N ≥ 0,   g ≥ 0,   N · g = 0     ⇔     min(N, c·g) = 0                      (3)
+      N ≥ 0,   g ≥ 0,   N · g = 0     ⇔     min(N, s·g) = 0   (any s > 0)       (3)
 
 Method. Because everything but the normal law is linear, the problem is condensed exactly onto
 the ``m`` normal contact coordinates. A regularised matrix in which every pair is *closed*,
@@ -31,12 +31,14 @@ forces as ``λ = S d + μ`` on the normal rows (the tangential springs are exact
 
 so the unknown is ``μ`` (m values) and ``F`` (m × m, dense, symmetric) is the only coupling. The
 equilibrium residual of (1) is ``r = Gnᵀ ρ`` with ``ρ = N(d_n) − S d_n − μ``; it is the quantity
-tested for convergence (‖r‖₂ ≤ tol·‖f‖₂, absolute when f = 0), never an iteration count.
+tested for convergence (‖r‖₂ ≤ tol·‖f‖₂, absolute when f = 0, or below the round-off floor of
+its terms), never an iteration count. The residual of (1) is recomputed with ``K`` at the end.
 
 * Penalty: semi-smooth Newton on ``ρ(μ) = 0`` with ``s = kn``, started with the pairs that the
-  all-closed solution pushes towards closing (a > 0) closed at their gap. ``ρ`` is the (negative, preconditioned) gradient of the convex
-  potential energy restricted to the affine set (5), so an exact line search on that
-  piecewise-quadratic energy makes the iteration globally convergent. When the open pairs leave
+  all-closed solution pushes towards closing (a > 0) closed at their gap. ``ρ`` is the
+  (negative, preconditioned) gradient of the convex potential energy restricted to the affine
+  set (5), so an exact line search on that piecewise-quadratic energy makes the iteration
+  globally convergent. When the open pairs leave
   a mechanism (singular Newton matrix) they get a tiny stiffness ε·kn in the Newton matrix only:
   the step then moves the free rigid mode until a pair touches; a full step along such a
   direction means the load pulls a body away from every contact (no equilibrium: status 1).
@@ -69,6 +71,7 @@ STATUS_NAMES = {CONVERGED: "converged", NOT_CONVERGED: "not converged",
 METHODS = ("penalty", "lagrange")
 FORWARD_ERROR_TOL = 1e-2  # A0 is singular when a solve with a known answer is worse than this
 RCOND_TOL = 1e-13  # smallest accepted reciprocal condition number of a dense Newton matrix
+ACCURACY_TOL = 1e-6  # a "converged" solution whose residual with K exceeds this is rejected
 ROUNDOFF = 1e3 * np.finfo(float).eps  # relative round-off floor of a contact-space residual
 STALL_ITER = 3  # full exact Newton steps in an unchanged active set before giving up
 MECHANISM_EPS = 1e-6  # relative stiffness given to open pairs when they leave a mechanism
@@ -153,18 +156,22 @@ def _check_shapes(K, f, G, g0, kn, kt, method):
     return sp.csc_matrix(K, dtype=float), f, sp.csr_matrix(G, dtype=float), g0, kn, kt
 
 
+def _first(mask, count=10):
+    """The first ``count`` indices where ``mask`` holds (for messages)."""
+    return np.flatnonzero(mask)[:count].tolist()
+
+
 def _physics_problem(K, f, G, g0, kn, kt):
     """Reason why the data cannot describe a physical problem, or None if they can."""
     for name, values in (("K", K.data), ("f", f), ("G", G.data), ("g0", g0), ("kt", kt)):
         if not np.all(np.isfinite(values)):
             return f"non-finite entries in {name}"
     if kn is not None and not np.all(np.isfinite(kn) & (kn > 0)):
-        bad = np.flatnonzero(~(np.isfinite(kn) & (kn > 0)))
-        return f"normal stiffness kn must be finite and > 0 (pairs {bad[:10].tolist()})"
+        return f"normal stiffness kn must be finite and > 0 (pairs {_first(~(kn > 0))})"
     if np.any(kt < 0):
-        return f"tangential stiffness kt must be >= 0 (pairs {np.flatnonzero(kt < 0)[:10].tolist()})"
+        return f"tangential stiffness kt must be >= 0 (pairs {_first(kt < 0)})"
     if np.any(g0 < 0):
-        return f"initial gap g0 must be >= 0 (pairs {np.flatnonzero(g0 < 0)[:10].tolist()})"
+        return f"initial gap g0 must be >= 0 (pairs {_first(g0 < 0)}): interpenetrating mesh?"
     scale = abs(K).max() if K.nnz else 0.0
     if scale > 0 and abs(K - K.T).max() > 1e-10 * scale:
         return "K is not symmetric"
@@ -172,7 +179,7 @@ def _physics_problem(K, f, G, g0, kn, kt):
 
 
 def _default_scale(K, Gn):
-    """Per-pair stiffness scale s_p = n_pᵀ K n_p (the structure's local stiffness seen by a pair)."""
+    """Per-pair stiffness scale s_p = n_pᵀ K n_p (local stiffness seen by pair p)."""
     s = np.asarray((Gn @ K).multiply(Gn).sum(axis=1)).ravel()
     positive = s[s > 0]
     return np.where(s > 0, s, positive.max() if positive.size else 1.0)
@@ -244,7 +251,7 @@ def _penalty_residual(d, mu, g, kn):
 
 
 def _exact_line_search(d, dd, mu, dmu, g, kn):
-    """Minimiser in (0, 1] of the convex energy along μ + tΔμ (its slope is Δdᵀρ(t), piecewise linear).
+    """Minimiser in (0, 1] of the convex energy along μ + tΔμ (slope Δdᵀρ(t), piecewise linear).
 
     Returns 1 when the energy still decreases at the full step, else the root of the slope
     located between consecutive kinks (where d + t·Δd crosses g) and interpolated exactly.
@@ -355,7 +362,7 @@ def _active_set(space, g0, s, mu, tol_abs, max_iter):
 
 
 def _augmented_lagrangian(space, g0, s, mu, tol_abs, max_iter):
-    """Uzawa iteration N ← max(N + s(d_n − g0), 0), each step a penalty problem with gap g0 − N/s."""
+    """Uzawa iteration N ← max(N + s(d_n − g0), 0), each a penalty problem, gap g0 − N/s."""
     iterations = 0
     N = np.maximum(mu + s * space.normal_displacement(mu), 0.0)
     for _ in range(max_iter):
@@ -373,7 +380,8 @@ def _augmented_lagrangian(space, g0, s, mu, tol_abs, max_iter):
 
 
 def _lagrange(space, g0, s, tol_abs, max_iter):
-    """Exact contact (3): penalty start (kn = s), active-set Newton, augmented-Lagrangian fallback."""
+    """Exact contact (3): penalty start (kn = s), active-set Newton, augmented Lagrangian fallback.
+    """
     start = _penalty_newton(space, g0, s, space.start(g0, s), tol_abs, max_iter)
     if start.status != CONVERGED:
         return start
@@ -389,7 +397,7 @@ def _lagrange(space, g0, s, tol_abs, max_iter):
 
 # ----------------------------------------------------------------------------- driver
 def _normal_force(space, mu, g0, s, method):
-    """N from the law: (2) for penalty; for Lagrange N = μ + s·d_n on the active set, 0 elsewhere."""
+    """N from the law: (2) for penalty; Lagrange: μ + s·d_n on the active set, else 0."""
     d = space.normal_displacement(mu)
     if method == "penalty":
         return s * np.maximum(d - g0, 0.0)
@@ -428,7 +436,7 @@ def _failure(K, f, G, g0, kt, status, reason, method, iterations=0):
 
 def solve_static_contact(K, f, G, g0, kn, kt, *, method="penalty", tol=1e-10,
                          max_iter=100) -> StaticContactResult:
-    """Static equilibrium (1) with the penalty (2) or exact (3) normal law; see the module docstring.
+    """Static equilibrium (1) with the penalty (2) or exact (3) normal law (module docstring).
 
     Parameters
     ----------
@@ -445,7 +453,8 @@ def solve_static_contact(K, f, G, g0, kn, kt, *, method="penalty", tol=1e-10,
     tol : convergence tolerance on ‖K u + Gᵀλ − f‖₂ / ‖f‖₂ (absolute when f = 0).
     max_iter : iteration guard of every Newton / active-set / augmented-Lagrangian loop.
 
-    Returns a :class:`StaticContactResult`; physics failures give ``status ≠ 0`` and a reason.
+    Returns a :class:`StaticContactResult`; physics failures give ``status ≠ 0`` and a reason
+    (with NaN fields when there is no solution at all, else the last iterate).
     Raises ``ValueError`` only for ill-shaped arguments or an unknown method.
     """
     K, f, G, g0, kn, kt = _check_shapes(K, f, G, g0, kn, kt, method)
@@ -472,4 +481,9 @@ def solve_static_contact(K, f, G, g0, kn, kt, *, method="penalty", tol=1e-10,
     if not (np.all(np.isfinite(u)) and np.all(np.isfinite(N))):
         return _failure(K, f, G, g0, kt, NOT_CONVERGED, f"non-finite solution ({out.reason})",
                         method, out.iterations)
-    return _result(K, f, G, g0, kt, u, N, out.iterations, out.status, out.reason, method)
+    result = _result(K, f, G, g0, kt, u, N, out.iterations, out.status, out.reason, method)
+    if result.status == CONVERGED and not result.residual <= ACCURACY_TOL:
+        result.status = SINGULAR
+        result.reason = (f"converged in the contact space but the residual with K is "
+                         f"{result.residual:.1e} (ill-conditioned system)")
+    return result

@@ -24,7 +24,7 @@ def main():
     nx, nz = (12, 14) if args.linear else (6, 7)
     t = time.perf_counter()
     system = two_blocks(nx=nx, nz=nz, height=1.0, quadratic=not args.linear,
-                        gap=lambda x, y: 2e-2 * ((x - 0.5) ** 2 + (y - 0.5) ** 2))
+                        gap=lambda x, y: 0.3 * ((x - 0.5) ** 2 + (y - 0.5) ** 2))
     print(f"{'Q1' if args.linear else 'Q2'} two blocks: {system.K.shape[0]} DoFs, "
           f"{system.g0.size} pairs, assembly {time.perf_counter() - t:.2f} s")
     for method in ("penalty", "lagrange"):

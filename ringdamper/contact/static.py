@@ -414,7 +414,9 @@ def _result(K, f, G, g0, kt, u, N, iterations, status, reason, method):
     f_norm = float(np.linalg.norm(f))
     gap = np.maximum(g0 - d[:, 0], 0.0)
     n_ref = N.max() if N.size else 0.0
-    g_ref = max(np.abs(g0).max(initial=0.0), np.abs(d[:, 0]).max(initial=0.0))
+    # length scale of the problem: gaps, normal motions or displacements, whichever is largest
+    g_ref = max(np.abs(g0).max(initial=0.0), np.abs(d[:, 0]).max(initial=0.0),
+                np.abs(u).max(initial=0.0))
     comp = float(np.abs(N * gap).max(initial=0.0) / (n_ref * g_ref)) if n_ref * g_ref > 0 else 0.0
     return StaticContactResult(
         u=u, N0=N, gap=gap, penetration=np.maximum(d[:, 0] - g0, 0.0), in_contact=N > 0,

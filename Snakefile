@@ -17,10 +17,12 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/sampling.smk"
 include: "workflow/rules/geometry.smk"
 include: "workflow/rules/modal.smk"
+include: "workflow/rules/static.smk"
 
 
 rule all:
     input:
         f"{RESULTS}/samples.csv",
-        expand(f"{RESULTS}/geometry/{{gid}}/mesh.vtu", gid=geometry_ids()),
+        expand(f"{RESULTS}/geometry/{{gid}}/static.nc", gid=geometry_ids()),
         f"{RESULTS}/modal/resonance.yaml",
+        f"{RESULTS}/figures/static_contact_maps.png",

@@ -1,8 +1,8 @@
 """Modal stage of the campaign (paper §2.3): ND diagram, Campbell diagram and the selected resonance.
 
-Run once on the default ring. The contact is linearised as stuck at every pair (kn, kt springs)
-until the static contact state is available; the datasets say so in their ``contact_state``
-attribute. The normalised frequency is omega0 = 2.195 omega / omega_stuck,default (DESIGN §2), with
+Run once on the default ring. The contact is linearised from the static contact state: pairs with
+N0 > 0 stuck (kn, kt springs), pairs with an open gap free; without a static state every pair is
+taken as stuck. The datasets say which in their ``contact_state`` attribute. The normalised frequency is omega0 = 2.195 omega / omega_stuck,default (DESIGN §2), with
 omega_stuck,default the target mode's frequency at the crossing speed.
 """
 
@@ -13,8 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from .calibration import stuck_contact_stiffness
-from .fem.model import SectorModel, build_model
+from .fem.model import SectorModel, build_model, contact_stiffness
 from .fem.prestress import prestressed_stiffness, rpm_to_rad_s
 from .geometry.sector import build_sector
 from .io import variable
@@ -22,7 +21,7 @@ from .modal import (FamilyClassifier, campbell, cyclic_modes, eo_crossing, famil
                     labelled_modes)
 
 PAPER_NORMALISED_FREQUENCY = 2.195
-CONTACT_STATE = "all pairs stuck (linearised kn, kt springs): static contact state not used"
+NO_STATIC_STATE = "all pairs stuck (linearised kn, kt springs): static contact state not used"
 
 
 @dataclass
@@ -34,14 +33,23 @@ class ModalResults:
     K_operating: object
 
 
-def _family_table(freqs, labels, blade):
-    return freqs, np.asarray(labels, dtype=str), blade
+def linearised_contact(model: SectorModel, contact_cfg: dict, in_contact=None):
+    """Stuck springs (kn, kt = stiffness per area x area) on the closed pairs, and a description."""
+    closed = np.ones(len(model.pairs), bool) if in_contact is None else np.asarray(in_contact, bool)
+    area = model.pairs.area * closed
+    Kc = contact_stiffness(model, contact_cfg["normal_stiffness_per_area"] * area,
+                           contact_cfg["tangential_stiffness_per_area"] * area)
+    state = (NO_STATIC_STATE if in_contact is None else
+             f"static contact state: {int(closed.sum())} of {len(closed)} pairs stuck (N0 > 0), "
+             "the others free")
+    return Kc, state
 
 
-def run_modal_stage(config: dict) -> ModalResults:
+def run_modal_stage(config: dict, in_contact=None) -> ModalResults:
+    """Modal stage; ``in_contact`` (per pair) from the default ring's static state, if available."""
     modal, op = config["modal"], config["operation"]
     model = build_model(build_sector(config, (0.0, 0.0, 0.0)), config)
-    Kc = stuck_contact_stiffness(model, config["contact"])
+    Kc, contact_state = linearised_contact(model, config["contact"], in_contact)
     omega_op = rpm_to_rad_s(op["speed_rpm"])
     clf = FamilyClassifier(model)
 
@@ -58,7 +66,7 @@ def run_modal_stage(config: dict) -> ModalResults:
     labels = np.array([r[1] for r in rows], dtype=str)
     blade = np.array([r[2] for r in rows])
 
-    attrs = {"speed_rpm": op["speed_rpm"], "contact_state": CONTACT_STATE,
+    attrs = {"speed_rpm": op["speed_rpm"], "contact_state": contact_state,
              "element_order": model.element_order, "dofs": model.n_dofs,
              "reference_frequency_hz": reference_hz}
     coords_nd = {"nd": variable("nd", nds, "1", "nodal diameter"),
@@ -83,7 +91,7 @@ def run_modal_stage(config: dict) -> ModalResults:
         "omega_stuck_default_rad_s": float(2 * np.pi * f_cross),
         "operating_speed_rpm": op["speed_rpm"],
         "relative_speed_offset": float(w_cross / omega_op - 1.0),
-        "contact_state": CONTACT_STATE,
+        "contact_state": contact_state,
     }
     return ModalResults(model=model, nd_diagram=nd_ds, campbell=camp_ds, resonance=resonance,
                         K_operating=K_op)

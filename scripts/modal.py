@@ -1,12 +1,15 @@
 """Rule script: default ring -> ND diagram, Campbell diagram, resonance, figures, mode-shape VTUs."""
 from pathlib import Path
 
-from ringdamper.io import mesh_fields, write_netcdf, write_vtu, write_yaml
+from ringdamper.io import mesh_fields, read_netcdf, write_netcdf, write_vtu, write_yaml
 from ringdamper.modal_stage import run_modal_stage, target_mode_shapes
 from ringdamper.plots.modal import plot_campbell, plot_mode_shapes, plot_nd_diagram
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-res = run_modal_stage(sm.config)
+static = read_netcdf(sm.input.static)
+if static.attrs["status"] != 0:
+    raise RuntimeError(f"the default ring's static solve failed: {static.attrs['reason']}")
+res = run_modal_stage(sm.config, in_contact=static.in_contact.values.astype(bool))
 write_netcdf(res.nd_diagram, sm.output.nd)
 write_netcdf(res.campbell, sm.output.campbell)
 write_yaml(res.resonance, sm.output.resonance)

@@ -13,3 +13,22 @@ def kappa_of(wildcards):
     """kappa of geometry ``gid``."""
     row = SAMPLES.loc[wildcards.gid]
     return [float(row.kappa1), float(row.kappa2), float(row.kappa3)]
+
+
+def gid_of(kappa):
+    """gid of the sample at exactly ``kappa`` (the factorial points hold the default and extremes)."""
+    hit = SAMPLES[(SAMPLES[["kappa1", "kappa2", "kappa3"]] == list(kappa)).all(axis=1)]
+    if hit.empty:
+        raise ValueError(f"no sample at kappa = {kappa}: keep -1, 0, 1 in sampling.factorial_levels")
+    return hit.index[0]
+
+
+def one_at_a_time_gids():
+    """Default ring and the six one-at-a-time extremes of Fig. 11 (label -> gid)."""
+    rings = {"default": (0.0, 0.0, 0.0)}
+    for i in range(3):
+        for level in (1.0, -1.0):
+            k = [0.0, 0.0, 0.0]
+            k[i] = level
+            rings[f"kappa{i + 1}={level:+.0f}"] = tuple(k)
+    return {label: gid_of(k) for label, k in rings.items()}

@@ -1,4 +1,6 @@
 rule modal:
+    input:
+        static=lambda wildcards: f"{RESULTS}/geometry/{gid_of((0.0, 0.0, 0.0))}/static.nc",
     output:
         nd=f"{RESULTS}/modal/nd_diagram.nc",
         campbell=f"{RESULTS}/modal/campbell.nc",

@@ -1,0 +1,31 @@
+rule static:
+    input:
+        mesh=f"{RESULTS}/geometry/{{gid}}/mesh.vtu",
+    output:
+        nc=f"{RESULTS}/geometry/{{gid}}/static.nc",
+        vtu=f"{RESULTS}/geometry/{{gid}}/static.vtu",
+    params:
+        kappa=kappa_of,
+    log:
+        f"{RESULTS}/logs/static/{{gid}}.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/static/{{gid}}.tsv"
+    conda:
+        "../../envs/fem.yaml"
+    script:
+        "../../scripts/static.py"
+
+
+rule static_maps:
+    input:
+        [f"{RESULTS}/geometry/{gid}/static.nc" for gid in one_at_a_time_gids().values()],
+    output:
+        report(f"{RESULTS}/figures/static_contact_maps.png", category="Static contact"),
+    params:
+        labels=list(one_at_a_time_gids()),
+    log:
+        f"{RESULTS}/logs/static_maps.log",
+    conda:
+        "../../envs/campaign.yaml"
+    script:
+        "../../scripts/static_maps.py"

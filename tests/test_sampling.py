@@ -12,6 +12,7 @@ def test_campaign_samples(campaign_config):
     table = make_samples(s)
     train = table[table.split == "training"]
     val = table[table.split == "validation"]
+    assert not (table.split == "reference").any()  # the factorial already holds every reference ring
     assert len(train) == 100 and len(val) == 20
     k_train = train[["kappa1", "kappa2", "kappa3"]].to_numpy()
     k_val = val[["kappa1", "kappa2", "kappa3"]].to_numpy()
@@ -37,3 +38,11 @@ def test_sampling_is_reproducible_and_seeded(campaign_config):
     assert a.equals(b)
     s["seed"] += 1
     assert not np.allclose(make_samples(s)[["kappa1"]], a[["kappa1"]])
+
+
+def test_reference_rings_are_added_when_the_design_lacks_them(small_config):
+    table = make_samples(small_config["sampling"])  # factorial levels -1, +1 only
+    refs = table[table.split == "reference"]
+    assert len(refs) == 7  # all but the paper optimum (1, -1, -1), a corner of the factorial
+    assert refs.gid.str.startswith("r").all()
+    assert ((refs[["kappa1", "kappa2", "kappa3"]] == 0).sum(axis=1) >= 2).all()

@@ -17,6 +17,16 @@ from scipy.stats import qmc
 
 N_KAPPA = 3
 
+# Rings every campaign computes, for the figures and forced responses: the default, the six
+# one-at-a-time extremes of Fig. 11 and the paper's optimum (§3.4).
+REFERENCE_RINGS = {
+    "default": (0.0, 0.0, 0.0),
+    "kappa1=+1": (1.0, 0.0, 0.0), "kappa1=-1": (-1.0, 0.0, 0.0),
+    "kappa2=+1": (0.0, 1.0, 0.0), "kappa2=-1": (0.0, -1.0, 0.0),
+    "kappa3=+1": (0.0, 0.0, 1.0), "kappa3=-1": (0.0, 0.0, -1.0),
+    "paper optimum": (1.0, -1.0, -1.0),
+}
+
 
 def _min_distance(points: np.ndarray, existing: np.ndarray) -> float:
     d = pdist(points).min() if len(points) > 1 else np.inf
@@ -40,7 +50,8 @@ def maximin_lhs(n: int, existing: np.ndarray, rng: np.random.Generator, candidat
 
 
 def make_samples(sampling: dict) -> pd.DataFrame:
-    """Table ``gid, kappa1, kappa2, kappa3, split`` of the campaign (training then validation)."""
+    """Table ``gid, kappa1, kappa2, kappa3, split`` of the campaign: training, validation, and the
+    reference rings the design does not already hold (split ``reference``, gids r000...)."""
     rng = np.random.default_rng(sampling["seed"])
     levels = sampling["factorial_levels"]
     factorial = np.array(list(itertools.product(levels, repeat=N_KAPPA)), dtype=float)
@@ -53,6 +64,9 @@ def make_samples(sampling: dict) -> pd.DataFrame:
     check_separation(training, validation, sampling["min_distance"])
     rows = [(f"t{i:03d}", *k, "training") for i, k in enumerate(training)]
     rows += [(f"v{i:03d}", *k, "validation") for i, k in enumerate(validation)]
+    design = np.vstack([training, validation])
+    missing = [k for k in REFERENCE_RINGS.values() if not np.any(np.all(design == k, axis=1))]
+    rows += [(f"r{i:03d}", *k, "reference") for i, k in enumerate(missing)]
     return pd.DataFrame(rows, columns=["gid", "kappa1", "kappa2", "kappa3", "split"])
 
 

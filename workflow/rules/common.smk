@@ -1,6 +1,6 @@
 # Shared by the rules. The design of experiments is seeded and deterministic, so it is computed at
 # parse time: the DAG is static and a dry run lists every job (the `samples` rule writes the same table).
-from ringdamper.campaign.sampling import make_samples
+from ringdamper.campaign.sampling import REFERENCE_RINGS, make_samples
 
 SAMPLES = make_samples(config["sampling"]).set_index("gid")
 
@@ -16,19 +16,11 @@ def kappa_of(wildcards):
 
 
 def gid_of(kappa):
-    """gid of the sample at exactly ``kappa`` (the factorial points hold the default and extremes)."""
+    """gid of the sample at exactly ``kappa`` (every reference ring is in the table)."""
     hit = SAMPLES[(SAMPLES[["kappa1", "kappa2", "kappa3"]] == list(kappa)).all(axis=1)]
-    if hit.empty:
-        raise ValueError(f"no sample at kappa = {kappa}: keep -1, 0, 1 in sampling.factorial_levels")
     return hit.index[0]
 
 
 def one_at_a_time_gids():
     """Default ring and the six one-at-a-time extremes of Fig. 11 (label -> gid)."""
-    rings = {"default": (0.0, 0.0, 0.0)}
-    for i in range(3):
-        for level in (1.0, -1.0):
-            k = [0.0, 0.0, 0.0]
-            k[i] = level
-            rings[f"kappa{i + 1}={level:+.0f}"] = tuple(k)
-    return {label: gid_of(k) for label, k in rings.items()}
+    return {label: gid_of(k) for label, k in REFERENCE_RINGS.items() if label != "paper optimum"}

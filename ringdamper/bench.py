@@ -12,6 +12,7 @@ import multiprocessing as mp
 import platform
 import resource
 import time
+import traceback
 from pathlib import Path
 
 from .config import load_config
@@ -42,18 +43,42 @@ def _fe_chain(config: dict) -> dict:
     return out
 
 
+def _static_chain(config: dict) -> dict:
+    """mesh -> model -> static contact for the reference rings (per-geometry times)."""
+    from .campaign.sampling import REFERENCE_RINGS
+    from .fem.model import build_model
+    from .geometry.sector import build_sector
+    from .static_stage import solve_static
+
+    rows = []
+    for label, kappa in REFERENCE_RINGS.items():
+        t = time.perf_counter()
+        model = build_model(build_sector(config, kappa), config)
+        t_model = time.perf_counter() - t
+        result, _ = solve_static(model, config)
+        rows.append({"ring": label, "kappa": list(kappa), "model_s": t_model,
+                     "static_s": time.perf_counter() - t - t_model, "status": result.status,
+                     "in_contact": int(result.in_contact.sum()), "pairs": len(model.pairs),
+                     "N0_sum_N": float(result.N0.sum()), "N0_max_N": float(result.N0.max()),
+                     "gap_max_m": float(result.gap.max()), "iterations": result.iterations})
+    return {"rings": rows}
+
+
 def _mesh_convergence(config: dict) -> dict:
     from .convergence import mesh_study
 
     return {"levels": mesh_study(config)}
 
 
-BENCHMARKS = {"fe_model": _fe_chain, "mesh_convergence": _mesh_convergence}
+BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "mesh_convergence": _mesh_convergence}
 
 
 def _run_one(name, config, queue):
     start = time.perf_counter()
-    result = BENCHMARKS[name](config)
+    try:
+        result = BENCHMARKS[name](config)
+    except Exception:  # report, don't hang the parent
+        result = {"error": traceback.format_exc()}
     result["total_wall_s"] = time.perf_counter() - start
     result["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     queue.put(result)

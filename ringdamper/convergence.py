@@ -46,9 +46,9 @@ def target_frequency(config: dict) -> dict:
 
 
 def mesh_study(config: dict, levels=((1, 1), (2, 1), (3, 1), (1, 2), (2, 2))) -> list[dict]:
-    """(element order, refinement factor) levels; errors relative to the finest quadratic level."""
+    """(refinement factor, element order) levels; errors relative to the finest quadratic level."""
     rows = [dict(order=order, factor=factor, **target_frequency(refined(config, factor, order)))
-            for order, factor in levels]
+            for factor, order in levels]
     reference = max((r for r in rows if r["order"] == 2), key=lambda r: r["dofs"])["frequency_hz"]
     for r in rows:
         r["relative_error"] = abs(r["frequency_hz"] - reference) / reference

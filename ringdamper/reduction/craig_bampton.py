@@ -105,3 +105,12 @@ def craig_bampton(K: sp.spmatrix, M: sp.spmatrix, boundary, interior, n_fi: int,
                         constraint_modes=psi if keep_modes else None,
                         fixed_interface_modes=phi if keep_modes else None,
                         interior=interior if keep_modes else None)
+
+
+def truncate(cb: CraigBampton, n_fi: int) -> CraigBampton:
+    """The CB model with only the first ``n_fi`` fixed-interface modes (identical to recomputing it)."""
+    if n_fi > cb.n_fi:
+        raise ValueError(f"cannot extend {cb.n_fi} fixed-interface modes to {n_fi}")
+    n = cb.n_boundary + n_fi
+    return CraigBampton(boundary=cb.boundary, K=cb.K[:n, :n].copy(), M=cb.M[:n, :n].copy(),
+                        omega2_fixed_interface=cb.omega2_fixed_interface[:n_fi])

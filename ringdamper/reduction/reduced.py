@@ -35,8 +35,8 @@ from .cyclic import mead
 from .interface import reduce_interface
 from .partition import Partition, partition
 
-N_FI = 40          # fixed-interface (Craig–Bampton) modes
-N_IF = 60          # interface modes per harmonic
+N_FI = 80          # fixed-interface (Craig–Bampton) modes
+N_IF = 40          # interface modes per harmonic
 N_HARMONICS = 5    # harmonics 0..H
 DIRECTIONS = ("n", "t1", "t2")
 
@@ -94,15 +94,22 @@ def reduce_sector(model: SectorModel, engine_order: int, n_harmonics: int = N_HA
     cb = craig_bampton(K, model.M, part.boundary, part.interior, n_fi, keep_modes=keep_modes)
     t1 = time.perf_counter()
     hs = range(n_harmonics + 1) if harmonics is None else harmonics
+    rs = reduce_harmonics(model, part, cb, engine_order, hs, n_if)
+    rs.timings = {"craig_bampton_s": t1 - t0, "cyclic_interface_s": time.perf_counter() - t1}
+    return rs
+
+
+def reduce_harmonics(model: SectorModel, part: Partition, cb: CraigBampton, engine_order: int,
+                     harmonics, n_if: int) -> ReducedSector:
+    """Steps 2 and 3 (Mead, interface) of every harmonic on a given CB model."""
     out = []
-    for h in hs:
+    for h in harmonics:
         sigma = harmonic_phase(h, engine_order, model.n_sectors)
         cm = mead(cb, part, model.sector_angle, sigma)
         ir = reduce_interface(cm, n_if)
         out.append(ReducedHarmonic(harmonic=int(h), nd=nodal_diameter(sigma, model.n_sectors),
                                    sigma=sigma, K=ir.K, M=ir.M, n_physical=ir.n_physical,
-                                   n_if=n_if, n_fi=n_fi, size_mead=cm.size))
-    t2 = time.perf_counter()
+                                   n_if=n_if, n_fi=cb.n_fi, size_mead=cm.size))
     n = out[0].size
     G = relative_displacement_operator(model)
     B = np.zeros((G.shape[0], n))
@@ -111,8 +118,7 @@ def reduce_sector(model: SectorModel, engine_order: int, n_harmonics: int = N_HA
         raise AssertionError("contact operator touches non-physical DoFs")
     response = int(np.searchsorted(part.physical, model.response_dof()))
     return ReducedSector(partition=part, cb=cb, harmonics=out, B=B, response_index=response,
-                         n_sectors=model.n_sectors, engine_order=engine_order,
-                         timings={"craig_bampton_s": t1 - t0, "cyclic_interface_s": t2 - t1})
+                         n_sectors=model.n_sectors, engine_order=engine_order)
 
 
 # --- stuck contact -------------------------------------------------------------------------------

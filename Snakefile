@@ -17,6 +17,7 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/sampling.smk"
 include: "workflow/rules/geometry.smk"
 include: "workflow/rules/modal.smk"
+include: "workflow/rules/reduction.smk"
 
 
 rule all:

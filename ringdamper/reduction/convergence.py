@@ -105,3 +105,45 @@ def convergence_study(model: SectorModel, engine_order: int, kn, kt, n_fi_values
                          "target_hz": float(f_target), "target_error": float(target_err),
                          "receptance_error": max(rec_err), "receptance_errors": rec_err, "max_error": float(worst)})
     return rows
+
+
+def markdown_table(rows: list[dict]) -> str:
+    band = len(rows[0]["receptance_errors"])
+    head = ("| n_fi | n_if | DoFs | time (s) | target error | "
+            + " | ".join(f"receptance error ({i + 1})" for i in range(band)) + " | max error ND 0–9 |")
+    lines = [head, "|" + "---|" * (6 + band)]
+    for r in rows:
+        lines.append(f"| {r['n_fi']} | {r['n_if']} | {r['size']} | {r['time_s']:.1f} | "
+                     f"{r['target_error']:.1e} | "
+                     + " | ".join(f"{e:.1e}" for e in r["receptance_errors"])
+                     + f" | {r['max_error']:.1e} |")
+    return "\n".join(lines)
+
+
+def main(argv=None) -> None:
+    """``python -m ringdamper.reduction.convergence``: the study on the default ring, as a table."""
+    import argparse
+
+    from ..config import load_config
+    from ..fem.model import build_model
+    from ..geometry.sector import build_sector
+    from .reduced import pair_stiffness
+
+    p = argparse.ArgumentParser(description=main.__doc__)
+    p.add_argument("--config", default=None)
+    p.add_argument("--kappa", type=float, nargs=3, default=(0.0, 0.0, 0.0))
+    p.add_argument("--n-fi", type=int, nargs="+", default=[10, 20, 40, 60, 80, 120, 160])
+    p.add_argument("--n-if", type=int, nargs="+", default=[10, 20, 40, 60, 90])
+    p.add_argument("--band", type=float, nargs="+", default=[0.98, 0.99, 0.996, 1.0])
+    a = p.parse_args(argv)
+    cfg = load_config(a.config) if a.config else load_config()
+    model = build_model(build_sector(cfg, a.kappa), cfg)
+    kn, kt = pair_stiffness(model.pairs.area, np.ones(len(model.pairs)), cfg["contact"])
+    rows = convergence_study(model, cfg["operation"]["engine_order"], kn, kt, a.n_fi, a.n_if,
+                             band=tuple(a.band))
+    print(f"target {rows[0]['target_hz']:.3f} Hz (stuck); receptance at {a.band} x target")
+    print(markdown_table(rows))
+
+
+if __name__ == "__main__":
+    main()

@@ -80,13 +80,18 @@ def _geometry_errors(config: dict) -> list[str]:
             f"geometry.blade: root radius tip_radius - height = {root:.6g} must exceed "
             f"contact_radius + max(kappa1_offsets) = {disk['contact_radius'] + max(lo_k1):.6g}")
     half_rim = disk["rim_axial_width"] / 2
-    web_edge = disk["web_thickness"] / 2
-    lo = web_edge + ring["width"] / 2
-    hi = half_rim - ring["width"] / 2
+    lo = half_rim + ring["width"] / 2
+    hi = half_rim + disk["arm_length"] - ring["width"] / 2
     if not lo < ring["axial_center"] < hi:
         errors.append(
             f"geometry.ring.axial_center = {ring['axial_center']} must lie in ({lo:.6g}, {hi:.6g}) "
-            "so that the ring sits under the rim overhang, clear of the web")
+            "so that the ring sits under the rim's arm")
+    if not disk["arm_thickness"] > max(lo_k1):
+        errors.append(f"geometry.disk.arm_thickness = {disk['arm_thickness']} must exceed the deepest "
+                      f"groove, max(kappa1_offsets) = {max(lo_k1)}")
+    if not disk["web_thickness"] < disk["rim_axial_width"]:
+        errors.append(f"geometry.disk.web_thickness = {disk['web_thickness']} must be below "
+                      f"rim_axial_width = {disk['rim_axial_width']}")
     if not blade["chord"] <= disk["rim_axial_width"] + 1e-12:
         errors.append(f"geometry.blade.chord = {blade['chord']} must not exceed "
                       f"geometry.disk.rim_axial_width = {disk['rim_axial_width']}")

@@ -18,8 +18,8 @@ from .fem.prestress import prestressed_stiffness, rpm_to_rad_s
 from .geometry.sector import build_sector
 from .modal import FamilyClassifier, family_frequency, labelled_modes
 
-COUNT_KEYS = ("n_theta_per_third", "n_r_web", "n_r_rim", "n_r_ring", "n_z_front", "n_z_web",
-              "n_z_gap", "n_z_ring", "n_z_back", "n_blade_height", "n_blade_thickness")
+COUNT_KEYS = ("n_theta_per_third", "n_r_web", "n_r_rim", "n_r_arm", "n_r_ring", "n_z_front", "n_z_web",
+              "n_z_rim_back", "n_z_gap", "n_z_ring", "n_z_back", "n_blade_height", "n_blade_thickness")
 
 
 def refined(config: dict, factor: int, element_order: int | None = None) -> dict:

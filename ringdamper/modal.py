@@ -1,8 +1,9 @@
 """Linear modal analysis of the rotating blisk + ring (paper §2.3, Figs. 3–5; DESIGN §3.1).
 
 * ``cyclic_modes``: eigenpairs of the ND-k sector, K_k phi = w^2 M_k phi (shift-invert Lanczos).
-* ``classify``: families by where the strain energy lives: a mode whose blade strain energy is below
-  half of the total is disk-dominated (1D, 2D, ...); blade modes are named from their shape: the tip's
+* ``classify``: families by where the strain energy lives: a mode with more than half of it in the
+  ring is a ring mode ("ring"; only without contact); one whose blade strain energy is below half of
+  the total is disk-dominated (1D, 2D, ...); blade modes are named from their shape: the tip's
   circumferential motion changes sign across the chord for torsion (1T); otherwise bending, 1B or 2B
   by the number of sign changes of the leading edge's circumferential motion along the height.
 * ``nd_diagram`` / ``campbell``: frequencies against nodal diameter / speed with prestress.
@@ -15,13 +16,14 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+from skfem import Basis
 from scipy.optimize import brentq
 
 from .fem.cyclic import cyclic_transform, interblade_phase, project
 from .fem.elasticity import tangent_stiffness
 from .fem.linalg import lowest_modes
-from .fem.model import SectorModel
-from .geometry.sector import PART_BLADE
+from .fem.model import INTORDER, SectorModel
+from .geometry.sector import PART_BLADE, PART_RING
 
 SHIFT_HZ = 1.0  # shift-invert below the lowest mode of interest (the stuck model has no rigid mode)
 
@@ -49,12 +51,8 @@ class FamilyClassifier:
 
     def __init__(self, model: SectorModel):
         self.model = model
-        blade_elements = np.flatnonzero(model.geometry.part == PART_BLADE)
-        from skfem import Basis
-        sub = Basis(model.geometry.mesh, model.basis.elem, elements=blade_elements,
-                    intorder=model.basis.intorder if hasattr(model.basis, "intorder") else 5)
-        mat = model.material
-        self.K_blade = tangent_stiffness(sub, mat["young_modulus"], mat["poisson_ratio"])
+        self.K_blade, sub = self._part_stiffness(PART_BLADE)
+        self.K_ring, _ = self._part_stiffness(PART_RING)
         nodes = model.nodes
         g = model.geometry
         blade_nodes = np.unique(sub.element_dofs)
@@ -65,8 +63,19 @@ class FamilyClassifier:
         self.leading = self.leading[np.argsort(np.hypot(nodes[self.leading, 0], nodes[self.leading, 1]))]
         self.half_angle = g.half_angle
 
+    def _part_stiffness(self, part):
+        """Stiffness of one part's elements, and the sub-basis."""
+        elements = np.flatnonzero(self.model.geometry.part == part)
+        sub = Basis(self.model.geometry.mesh, self.model.basis.elem, elements=elements,
+                    intorder=INTORDER[self.model.element_order])
+        mat = self.model.material
+        return tangent_stiffness(sub, mat["young_modulus"], mat["poisson_ratio"]), sub
+
+    def _energy_fraction(self, K_part, K: sp.spmatrix, phi: np.ndarray) -> float:
+        return float(np.real(phi.conj() @ (K_part @ phi)) / np.real(phi.conj() @ (K @ phi)))
+
     def blade_energy_fraction(self, K: sp.spmatrix, phi: np.ndarray) -> float:
-        return float(np.real(phi.conj() @ (self.K_blade @ phi)) / np.real(phi.conj() @ (K @ phi)))
+        return self._energy_fraction(self.K_blade, K, phi)
 
     def _circumferential(self, phi: np.ndarray, nodes: np.ndarray) -> np.ndarray:
         """Real circumferential displacement (phase of the largest blade motion removed)."""
@@ -78,6 +87,8 @@ class FamilyClassifier:
         return np.real(v * np.conj(ref) / abs(ref))
 
     def label(self, K: sp.spmatrix, phi: np.ndarray) -> str:
+        if self._energy_fraction(self.K_ring, K, phi) > 0.5:
+            return "ring"
         if self.blade_energy_fraction(K, phi) < 0.5:
             return "1D"
         z = self.model.nodes[self.tip, 2]
@@ -100,7 +111,7 @@ def _number_families(labels: list[str]) -> list[str]:
         if lab == "1D":
             count += 1
             lab = f"{count}D"
-        elif lab in seen:
+        elif lab in seen and lab != "ring":
             lab = "blade"
         seen.add(lab)
         out.append(lab)

@@ -5,9 +5,11 @@ the sector centred on the X axis, theta in [-pi/N, pi/N]):
 
 * web   (r, theta, z): bore radius -> contact radius, tapered linearly from hub_thickness at the
   bore to web_thickness under the rim;
-* rim   (r, theta, z): contact radius -> blade root radius, |z| <= rim_axial_width / 2; inside the
-  ring's axial band its underside (the groove) follows the ring's upper surface, the offset fading
-  linearly to zero at the blade root;
+* rim   (r, theta, z): contact radius -> blade root radius, |z| <= rim_axial_width / 2;
+* arm   (r, theta, z): a thin axial extension of the rim's underside behind it (contact radius ->
+  + arm_thickness, z from rim_axial_width / 2 to + arm_length), like the rim arms that carry ring
+  dampers (Laxalde et al. 2007); inside the ring's axial band its underside (the groove) follows the
+  ring's upper surface, the offset fading linearly to zero at the arm's outer surface;
 * blade (r, s, z): a flat plate of constant thickness (s = arc length, theta = s / r), chord along Z
   (zero stagger), root on the rim's outer surface;
 * ring  (xi, theta, z): between its lower and upper surfaces (xi = 0 .. 1), a separate body whose
@@ -32,8 +34,8 @@ from skfem.assembly import Dofs
 
 from .shape import lower_offset, shape_offsets, upper_offset
 
-PART_NAMES = ("web", "rim", "blade", "ring")
-PART_WEB, PART_RIM, PART_BLADE, PART_RING = range(4)
+PART_NAMES = ("web", "rim", "blade", "ring", "arm")
+PART_WEB, PART_RIM, PART_BLADE, PART_RING, PART_ARM = range(5)
 BODY_BLISK, BODY_RING = 0, 1
 MERGE_TOL = 1e-9  # m
 
@@ -137,19 +139,22 @@ def build_sector(config: dict, kappa) -> SectorMesh:
     n3 = mcfg["n_theta_per_third"]
     side = [_segment(th / 3, th_b, n3), _segment(2 * th / 3, th / 3, n3), _segment(th, 2 * th / 3, n3)]
     theta = _join(*[-seg for seg in side], _segment(-th_b, th_b, mcfg["n_blade_thickness"]), *side)
+    r_arm = r_c + disk["arm_thickness"]
     z_rim = _join(_segment(-half_w, -web, mcfg["n_z_front"]), _segment(-web, web, mcfg["n_z_web"]),
-                  _segment(web, z_lo, mcfg["n_z_gap"]), _segment(z_lo, z_hi, mcfg["n_z_ring"]),
-                  _segment(z_hi, half_w, mcfg["n_z_back"]), [-chord / 2, chord / 2])
+                  _segment(web, half_w, mcfg["n_z_rim_back"]), [-chord / 2, chord / 2])
+    z_arm = _join(_segment(half_w, z_lo, mcfg["n_z_gap"]), _segment(z_lo, z_hi, mcfg["n_z_ring"]),
+                  _segment(z_hi, half_w + disk["arm_length"], mcfg["n_z_back"]))
+    r_rim = _join(_segment(r_c, r_arm, mcfg["n_r_arm"]), _segment(r_arm, r_root, mcfg["n_r_rim"]))
     z_web = z_rim[(z_rim >= -web - MERGE_TOL) & (z_rim <= web + MERGE_TOL)]
-    z_ring = z_rim[(z_rim >= z_lo - MERGE_TOL) & (z_rim <= z_hi + MERGE_TOL)]
+    z_ring = z_arm[(z_arm >= z_lo - MERGE_TOL) & (z_arm <= z_hi + MERGE_TOL)]
     z_blade = z_rim[np.abs(z_rim) <= chord / 2 + MERGE_TOL]
     s_blade = _segment(-t_b / 2, t_b / 2, mcfg["n_blade_thickness"])
 
     def in_band(z):
         return (z >= z_lo - MERGE_TOL) & (z <= z_hi + MERGE_TOL)
 
-    def rim_map(r, t, z):
-        fade = (r_root - r) / (r_root - r_c)
+    def arm_map(r, t, z):
+        fade = (r_arm - r) / (r_arm - r_c)
         return _cartesian(r + upper_offset(t, th, d1) * in_band(z) * fade, t, z)
 
     def ring_map(xi, t, z):
@@ -166,10 +171,12 @@ def build_sector(config: dict, kappa) -> SectorMesh:
         return _cartesian(r, s / r, z)
 
     maps = [  # (part, map), in PART_* order
-        (PART_WEB, web_map), (PART_RIM, rim_map), (PART_BLADE, blade_map), (PART_RING, ring_map)]
+        (PART_WEB, web_map), (PART_RIM, _cartesian), (PART_BLADE, blade_map), (PART_RING, ring_map),
+        (PART_ARM, arm_map)]
     lines = {
         PART_WEB: (_segment(r_bore, r_c, mcfg["n_r_web"]), theta, z_web),
-        PART_RIM: (_segment(r_c, r_root, mcfg["n_r_rim"]), theta, z_rim),
+        PART_RIM: (r_rim, theta, z_rim),
+        PART_ARM: (_segment(r_c, r_arm, mcfg["n_r_arm"]), theta, z_arm),
         PART_BLADE: (_segment(r_root, r_tip, mcfg["n_blade_height"]), s_blade, z_blade),
         PART_RING: (_segment(0.0, 1.0, mcfg["n_r_ring"]), theta, z_ring),
     }
@@ -209,7 +216,7 @@ def build_sector(config: dict, kappa) -> SectorMesh:
         "left": np.flatnonzero(np.abs(ang + th) < 1e-12),
         "right": np.flatnonzero(np.abs(ang - th) < 1e-12),
         "ring_top": np.flatnonzero(is_ring & (np.abs(logical[:, 0] - 1.0) < 1e-12)),
-        "groove": np.flatnonzero((owner == PART_RIM) & (np.abs(logical[:, 0] - r_c) < MERGE_TOL)
+        "groove": np.flatnonzero((owner == PART_ARM) & (np.abs(logical[:, 0] - r_c) < MERGE_TOL)
                                  & in_band(points[:, 2])),
     }
     tip = np.flatnonzero((owner == PART_BLADE) & (np.abs(logical[:, 0] - r_tip) < MERGE_TOL)

@@ -137,6 +137,25 @@ class CondensedHBM:
         s = self.S[h].size
         return self.eta_slices[h].start + k + (s if imag else 0)
 
+    def update_gauge(self, y: np.ndarray) -> None:
+        """Set the gauge reference to the zero-mode positions of ``y`` (called on every accepted
+        continuation point, so an undetermined rigid-body position keeps its last value)."""
+        if self.zero_modes.size:
+            self.eta_ref = y[self.eta_slices[0].start + self.zero_modes].copy()
+
+    def core_scale(self, y: np.ndarray) -> np.ndarray:
+        """Scale of every core unknown for convergence tests: contact slots by the largest of
+        them, explicit modal coordinates by the largest of them or the modal equivalent of the
+        contact scale, whichever is larger."""
+        sc = np.empty(self.n_core)
+        ds = max(np.max(np.abs(y[:self.n_d])), 1e-300)
+        sc[:self.n_d] = ds
+        if self.n_core > self.n_d:
+            psi = max(np.max(np.abs(self.modal[h].Psi[:, self.S[h]]), initial=0.0)
+                      for h in range(self.H + 1))
+            sc[self.n_d:] = max(np.max(np.abs(y[self.n_d:])), ds / max(psi, 1e-300))
+        return sc
+
     # ---- evaluation -----------------------------------------------------------------------
     def evaluate(self, y: np.ndarray, omega: float, xi: float, jacobian: bool = True) -> CoreEval:
         H, C, p, npairs = self.H, self.C, self.p, self.npairs
@@ -214,7 +233,7 @@ class CondensedHBM:
         z, dz_dw, dz_dx = self._modal_impedance(h, omega, xi)
         etaC = eta[Cs]
         grad = np.zeros(self.n_core)
-        u = m.Psi[:, Cs] @ (etaC / z[Cs]).conj()
+        u = m.Psi[:, Cs] @ (etaC * np.conj(1.0 / z[Cs]))
         row = -2.0 * (u.real[None] if h == 0 else real_vector(u)[None])
         kc = ev.aft.jac
         active = np.any(kc.reshape(self.npairs, -1) != 0, axis=1)
@@ -268,6 +287,16 @@ class CondensedHBM:
                 v[null] = 0.0
                 vec[rows] = v
         return drift
+
+
+def pole_modes(structure: Structure, H: int, lo: float, hi: float) -> list:
+    """Explicit-mode sets: for ``h ≥ 1`` the modes with ``ω_r ∈ [h·lo, h·hi]`` (none if
+    ``hi ≤ lo``); harmonic 0 gets its zero modes automatically in :class:`CondensedHBM`."""
+    out = [np.zeros(0, int)]
+    for h in range(1, H + 1):
+        w = np.sqrt(structure.modal(h).w2)
+        out.append(np.flatnonzero((w >= h * lo) & (w <= h * hi)) if hi > lo else np.zeros(0, int))
+    return out
 
 
 def _real_rows(A: np.ndarray, p: int) -> np.ndarray:

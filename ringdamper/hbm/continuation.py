@@ -76,9 +76,10 @@ def _blocked(z_new, z_pred, z_old, scale, floor):
 
 def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
             scale: Callable, steps: StepControl, tol: float, max_iter: int,
-            accept: Callable | None = None) -> NaturalResult:
-    """Continuation in the scalar parameter ``s`` over the increasing ``grid``, landing exactly on
-    every grid value (so grid outputs are converged solutions, not interpolants).
+            accept: Callable | None = None, s_start: float | None = None) -> NaturalResult:
+    """Continuation in the scalar parameter ``s`` from ``s_start`` (default ``grid[0]``; ``z0``
+    is the guess there) over the increasing ``grid``, landing exactly on every grid value (so grid
+    outputs are converged solutions, not interpolants).
 
     ``fun(z, s) -> (r, J, trivial, n_core, payload)``; ``dfun_ds(z, s)`` is ``∂r/∂s``;
     ``accept(z, payload)`` is called on every accepted point (e.g. to update a gauge).
@@ -88,13 +89,20 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
     points, status = [None] * n, np.full(n, Status.NOT_REACHED, int)
     reason = ["not reached"] * n
     out = NaturalResult(grid, points, status, reason)
-    res = newton(lambda z: fun(z, grid[0]), z0, scale, tol, max_iter)
+    s = grid[0] if s_start is None else min(s_start, grid[0])
+    res = newton(lambda z: fun(z, s), z0, scale, tol, max_iter)
     if not res.converged:
-        status[0], reason[0] = Status.NO_CONVERGENCE, f"first point: {res.reason}"
+        status[0], reason[0] = Status.NO_CONVERGENCE, f"start point: {res.reason}"
         return out
-    s, z, last = grid[0], res.z, res
-    _record(out, 0, s, res, accept)
-    gi, ds = 1, steps.initial
+    z, last = res.z, res
+    out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
+    gi = 0
+    if s == grid[0]:
+        _record(out, 0, s, res, accept)
+        gi = 1
+    elif accept is not None:
+        accept(z, res.payload)
+    ds = steps.initial
     while gi < n:
         s_t = min(s + ds, grid[gi])
         on_grid = s_t >= grid[gi] - 1e-12 * max(1.0, abs(grid[gi]))
@@ -134,24 +142,30 @@ def _record(out: NaturalResult, i: int, s: float, res: NewtonResult, accept):
 class ArclengthResult:
     points: list
     tangents: list
+    scales: list
     status: int
     reason: str
 
 
 def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.ndarray,
               steps: StepControl, tol: float, max_iter: int, stop: Callable[[np.ndarray], bool],
-              max_points: int, max_angle: float = np.pi / 4) -> ArclengthResult:
+              max_points: int, max_angle: float = np.pi / 4, corner: float = 100.0,
+              rescale: Callable | None = None) -> ArclengthResult:
     """Pseudo-arc-length continuation of ``r(z) = 0`` (one fewer equation than unknowns).
 
     ``fun(z) -> (r, J, trivial, n_core, payload)`` with ``J`` of shape ``(n−1, n)``; ``z0`` a
     solution; ``direction`` the initial orientation; ``scale`` the variable scaling (arc length is
     measured on ``u = z / scale``; the corrector stays on the hyperplane normal to the tangent).
-    A step is rejected if the tangent turns by more than ``max_angle``. Stops with status 0 when
-    ``stop(z)`` is true.
+    A step is rejected if the tangent turns by more than ``max_angle``, unless the step has
+    already been refined below ``corner × steps.minimum``: the turn is then a corner of the
+    non-smooth branch (e.g. the stick–slip kink of a Jenkins element). Stops with status 0 when
+    ``stop(z)`` is true. ``rescale(z, scale) -> scale`` may update the scaling after every
+    accepted point (the tangent is carried over in unscaled form). ``scales`` in the result holds
+    the scaling in force at every point.
     """
     r0, J0, trivial0, n_core0, payload0 = fun(z0)
     t = _tangent(J0, trivial0, n_core0, direction / scale, scale)
-    pts, tans = [ContinuationPoint(0.0, z0, payload0, 0)], [t]
+    pts, tans, scales = [ContinuationPoint(0.0, z0, payload0, 0)], [t], [scale]
     z, s, ds = z0, 0.0, steps.initial
     while len(pts) < max_points:
         zp = z + ds * t * scale
@@ -168,20 +182,26 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
             e[-1] = 1.0
             x = res.factorization.solve(e) / scale
             t_new = x / np.linalg.norm(x)
-            ok = np.dot(t_new, t) >= np.cos(max_angle)
+            ok = np.dot(t_new, t) >= np.cos(max_angle) or ds <= corner * steps.minimum
         if ok:
             z, t, s = res.z, t_new, s + ds
             pts.append(ContinuationPoint(s, z, res.payload, res.iterations))
             tans.append(t)
+            scales.append(scale)
             if stop(z):
-                return ArclengthResult(pts, tans, Status.CONVERGED, "")
+                return ArclengthResult(pts, tans, scales, Status.CONVERGED, "")
+            if rescale is not None:
+                new = rescale(z, scale)
+                t = t * scale / new
+                t, scale = t / np.linalg.norm(t), new
             ds = steps.adapt(ds, res.iterations)
             continue
         ds *= 0.5
         if ds < steps.minimum:
             why = res.reason if not res.converged else "tangent turned or corrector jumped"
-            return ArclengthResult(pts, tans, Status.NO_CONVERGENCE, f"step below minimum: {why}")
-    return ArclengthResult(pts, tans, Status.MAX_POINTS, f"{max_points} points reached")
+            return ArclengthResult(pts, tans, scales, Status.NO_CONVERGENCE,
+                                   f"step below minimum: {why}")
+    return ArclengthResult(pts, tans, scales, Status.MAX_POINTS, f"{max_points} points reached")
 
 
 def _tangent(J, trivial, n_core, direction_u, scale):

@@ -23,9 +23,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ringdamper.contact.friction import FrictionContacts
-from ringdamper.hbm.condensed import CondensedHBM
+from ringdamper.hbm.condensed import CondensedHBM, pole_modes
 from ringdamper.hbm.continuation import Status, StepControl, natural
-from ringdamper.hbm.fourier import default_nt, to_complex
+from ringdamper.hbm.fourier import default_nt
 from ringdamper.hbm.structure import Structure
 
 
@@ -87,32 +87,18 @@ class EPMCProblem:
         return e
 
     def scale(self, z: np.ndarray) -> np.ndarray:
-        """Scale of every unknown for the convergence test: contact slots by their largest
-        value, explicit modal coordinates by theirs (or the equivalent of the contact scale),
-        ω and ξ by ω."""
-        m = self.model
-        sc = np.empty(self.n)
-        ds = max(np.max(np.abs(z[:m.n_d])), 1e-300)
-        sc[:m.n_d] = ds
-        eta = z[m.n_d:m.n_core]
-        if eta.size:
-            psi = max(np.max(np.abs(m.modal[h].Psi[:, m.S[h]])) if m.S[h].size else 0.0
-                      for h in range(m.H + 1))
-            sc[m.n_d:m.n_core] = max(np.max(np.abs(eta)), ds / max(psi, 1e-300))
-        sc[-2:] = abs(z[-2])
-        return sc
+        """Convergence scales: :meth:`CondensedHBM.core_scale` for ``y``, ω for ω and ξ."""
+        return np.r_[self.model.core_scale(z[:-2]), abs(z[-2]), abs(z[-2])]
 
     def accept(self, z, ev):
-        """Gauge update: undetermined rigid-body positions stay at their last value."""
-        m = self.model
-        if m.zero_modes.size:
-            m.eta_ref = z[m.eta_slices[0]][m.zero_modes].copy()
+        self.model.update_gauge(z[:-2])
 
 
 def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
          nt: int | None = None, mode: int = 0, omega_target: float | None = None,
          pole_band: float = 0.0, tol: float = 1e-10, max_iter: int = 20,
-         steps: StepControl | None = None, gauge_reference: np.ndarray | None = None) -> Backbone:
+         steps: StepControl | None = None, gauge_reference: np.ndarray | None = None,
+         alpha_start: float | None = None) -> Backbone:
     """dNNM backbone of one mode over the increasing modal-amplitude grid ``alpha``.
 
     ``mode``/``omega_target``: which linearised stuck mode of harmonic 1 to follow (index in
@@ -120,7 +106,9 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     harmonic ``h`` whose ω_r lies within ``±pole_band·hω₀`` of ``hω₀`` (ω₀ the stuck frequency;
     low side widened to ``(1 − 2·pole_band)``) are kept explicit. ``steps``: control in ``log α``
     (default initial 0.2, min 1e-4, max 0.5). ``gauge_reference``: position of zero modes while
-    they are undetermined at the first point (default 0).
+    they are undetermined at the first point (default 0). ``alpha_start``: where the continuation
+    starts from the linear stuck mode (default: half the smallest amplitude at which, in the
+    linear stuck mode, a pair would slip or open, if below ``alpha[0]``).
     """
     t0 = time.perf_counter()
     alpha = np.asarray(alpha, float)
@@ -131,14 +119,16 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     nt = default_nt(H) if nt is None else nt
     steps = steps or StepControl(initial=0.2, minimum=1e-4, maximum=0.5)
     omega0, phi = _stuck_mode(structure, contacts, mode, omega_target)
-    explicit = _pole_modes(structure, H, omega0 * (1 - 2 * pole_band), omega0 * (1 + pole_band))
+    explicit = pole_modes(structure, H, omega0 * (1 - 2 * pole_band), omega0 * (1 + pole_band))
     model = CondensedHBM(structure, contacts, H, nt, explicit=explicit)
     if gauge_reference is not None:
         model.eta_ref = np.asarray(gauge_reference, float).copy()
-    z0, phase_index = _initial_guess(model, phi, omega0, alpha[0])
+    if alpha_start is None:
+        alpha_start = min(alpha[0], 0.5 * _linear_limit(structure, contacts, phi))
+    z0, phase_index = _initial_guess(model, phi, omega0, alpha_start)
     problem = EPMCProblem(model, phase_index)
     run = natural(problem.fun, problem.dfun_ds, z0, np.log(alpha), problem.scale, steps, tol,
-                  max_iter, accept=problem.accept)
+                  max_iter, accept=problem.accept, s_start=np.log(alpha_start))
     return _collect(run, model, alpha, problem, time.perf_counter() - t0)
 
 
@@ -148,13 +138,15 @@ def _stuck_mode(structure, contacts, mode, omega_target):
     return omegas[k], Phi[:, k]
 
 
-def _pole_modes(structure, H, lo, hi):
-    """Explicit modes of harmonics ``h ≥ 1`` with ``ω_r ∈ [h·lo, h·hi]``."""
-    out = [np.zeros(0, int)]
-    for h in range(1, H + 1):
-        w = np.sqrt(structure.modal(h).w2)
-        out.append(np.flatnonzero((w >= h * lo) & (w <= h * hi)) if hi > lo else np.zeros(0, int))
-    return out
+def _linear_limit(structure, contacts, phi):
+    """Smallest modal amplitude at which the linear stuck mode ``phi`` would make a preloaded
+    pair slip (``kt |d_t| = μ N0``) or open (``kn |d_n| = N0``), or a gapped pair close."""
+    d = np.abs(structure.harmonics[1].B @ phi).reshape(-1, 3)
+    with np.errstate(divide="ignore"):
+        slip = contacts.mu * contacts.N0 / (contacts.kt * np.max(d[:, 1:], axis=1))
+        open_ = np.where(contacts.N0 > 0, contacts.N0 / contacts.kn, contacts.gap) / d[:, 0]
+    lim = np.min(np.r_[slip[contacts.N0 > 0], open_, np.inf])
+    return lim if np.isfinite(lim) and lim > 0 else np.inf
 
 
 def _initial_guess(model: CondensedHBM, phi: np.ndarray, omega0: float, alpha0: float):
@@ -202,8 +194,7 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall) -> Bac
             status[i] = Status.DRIFT
             reason[i] = (f"mean force on a free body {drift[i]:.2e} (relative): no periodic "
                          "solution, the body ratchets")
-    branch = np.array([(np.exp(p.s), p.z[-2], p.z[-1]) for p in
-                       [q for q in run.points[:1] if q is not None] + run.branch])
+    branch = np.array([(np.exp(p.s), p.z[-2], p.z[-1]) for p in run.branch]).reshape(-1, 3)
     return Backbone(alpha=alpha, omega=omega, xi=xi, zeta=xi / (2 * omega), status=status,
                     reason=reason, iterations=iters, d=d, lam=lam, eta=eta, drift=drift,
                     branch=branch, model=model, wall_time=wall)

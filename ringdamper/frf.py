@@ -65,7 +65,7 @@ class Peak:
 
 def forced_response(structure: Structure, contacts: FrictionContacts, gamma: float,
                     omega_start: float, omega_end: float, *, H: int = 1, nt: int | None = None,
-                    zeta_s: float = 0.0, pole_band: float = 0.0, tol: float = 1e-10,
+                    zeta_s: float = 0.0, pole_band: float = 0.05, tol: float = 1e-10,
                     max_iter: int = 20, steps: StepControl | None = None,
                     max_points: int = 1000) -> FRF:
     """Forced response at forcing amplitude ``gamma`` [N] from ``omega_start`` to ``omega_end``.
@@ -148,9 +148,10 @@ def resonance_peak(frf: FRF, measure: str = "peak", xtol: float = 1e-12) -> Peak
         w = sigma / sig[0 if sigma < 0 else 1]
         guess = zi + w * (frf.points[j].z - zi)
 
-        def bordered(z):
-            r, J, trivial, n_core, ev = problem.fun(z)
-            return np.r_[r, plane @ (z - zi) - sigma], np.vstack([J, plane]), trivial, n_core, ev
+        def bordered(z, jac):
+            r, J, trivial, n_core, ev = problem.fun(z, jac)
+            Jb = np.vstack([J, plane]) if jac else None
+            return np.r_[r, plane @ (z - zi) - sigma], Jb, trivial, n_core, ev
 
         res = newton(bordered, guess, lambda _: scale, frf.tol, frf.max_iter)
         cache[sigma] = res

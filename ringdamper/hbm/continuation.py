@@ -81,7 +81,7 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
     is the guess there) over the increasing ``grid``, landing exactly on every grid value (so grid
     outputs are converged solutions, not interpolants).
 
-    ``fun(z, s) -> (r, J, trivial, n_core, payload)``; ``dfun_ds(z, s)`` is ``∂r/∂s``;
+    ``fun(z, s, jacobian) -> (r, J, trivial, n_core, payload)``; ``dfun_ds(z, s)`` is ``∂r/∂s``;
     ``accept(z, payload)`` is called on every accepted point (e.g. to update a gauge).
     """
     grid = np.asarray(grid, float)
@@ -90,7 +90,7 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
     reason = ["not reached"] * n
     out = NaturalResult(grid, points, status, reason)
     s = grid[0] if s_start is None else min(s_start, grid[0])
-    res = newton(lambda z: fun(z, s), z0, scale, tol, max_iter)
+    res = newton(lambda z, jac: fun(z, s, jac), z0, scale, tol, max_iter)
     if not res.converged:
         status[0], reason[0] = Status.NO_CONVERGENCE, f"start point: {res.reason}"
         return out
@@ -109,7 +109,7 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
         s_t = grid[gi] if on_grid else s_t
         tangent = last.factorization.solve(-dfun_ds(z, s))
         z_pred = z + (s_t - s) * tangent
-        res = newton(lambda zz: fun(zz, s_t), z_pred, scale, tol, max_iter)
+        res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale, tol, max_iter)
         if res.converged and not _blocked(res.z, z_pred, z, scale, steps.jump_floor):
             s, z, last = s_t, res.z, res
             out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
@@ -153,7 +153,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
               rescale: Callable | None = None) -> ArclengthResult:
     """Pseudo-arc-length continuation of ``r(z) = 0`` (one fewer equation than unknowns).
 
-    ``fun(z) -> (r, J, trivial, n_core, payload)`` with ``J`` of shape ``(n−1, n)``; ``z0`` a
+    ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)``, ``J`` of shape ``(n−1, n)``; ``z0`` a
     solution; ``direction`` the initial orientation; ``scale`` the variable scaling (arc length is
     measured on ``u = z / scale``; the corrector stays on the hyperplane normal to the tangent).
     A step is rejected if the tangent turns by more than ``max_angle``, unless the step has
@@ -163,7 +163,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
     accepted point (the tangent is carried over in unscaled form). ``scales`` in the result holds
     the scaling in force at every point.
     """
-    r0, J0, trivial0, n_core0, payload0 = fun(z0)
+    r0, J0, trivial0, n_core0, payload0 = fun(z0, True)
     t = _tangent(J0, trivial0, n_core0, direction / scale, scale)
     pts, tans, scales = [ContinuationPoint(0.0, z0, payload0, 0)], [t], [scale]
     z, s, ds = z0, 0.0, steps.initial
@@ -171,9 +171,10 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
         zp = z + ds * t * scale
         plane = t / scale
 
-        def bordered(zz, zp=zp, plane=plane):
-            r, J, trivial, n_core, payload = fun(zz)
-            return np.r_[r, plane @ (zz - zp)], np.vstack([J, plane]), trivial, n_core, payload
+        def bordered(zz, jac, zp=zp, plane=plane):
+            r, J, trivial, n_core, payload = fun(zz, jac)
+            Jb = np.vstack([J, plane]) if jac else None
+            return np.r_[r, plane @ (zz - zp)], Jb, trivial, n_core, payload
 
         res = newton(bordered, zp, lambda _: scale, tol, max_iter)
         ok = res.converged and not _blocked(res.z, zp, z, lambda _: scale, steps.jump_floor)

@@ -68,12 +68,15 @@ class EPMCProblem:
         self.model, self.phase_index, self.drift_tol = model, phase_index, drift_tol
         self.n = model.n_core + 2
 
-    def fun(self, z: np.ndarray, s: float):
+    def fun(self, z: np.ndarray, s: float, jacobian: bool = True):
         m = self.model
         y, omega, xi = z[:-2], z[-2], z[-1]
-        ev = m.evaluate(y, omega, xi)
-        n2, g, d_w, d_x = m.modal_norm2(ev, omega, xi)
+        ev = m.evaluate(y, omega, xi, jacobian)
+        n2 = float(np.sum(np.abs(ev.eta[1]) ** 2))
         r = np.r_[ev.r, 0.5 * np.log(n2) - s, y[self.phase_index]]
+        if not jacobian:
+            return r, None, None, m.n_core, ev
+        n2, g, d_w, d_x = m.modal_norm2(ev, omega, xi)
         J = np.zeros((self.n, self.n))
         J[:m.n_core, :m.n_core] = ev.J
         J[:m.n_core, -2], J[:m.n_core, -1] = ev.dr_domega, ev.dr_dxi
@@ -96,9 +99,9 @@ class EPMCProblem:
 
 def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
          nt: int | None = None, mode: int = 0, omega_target: float | None = None,
-         pole_band: float = 0.0, tol: float = 1e-10, max_iter: int = 20,
+         pole_band: float = 0.1, tol: float = 1e-10, max_iter: int = 20,
          steps: StepControl | None = None, gauge_reference: np.ndarray | None = None,
-         alpha_start: float | None = None) -> Backbone:
+         alpha_start: float | None = None, drift_tol: float = 1e-8) -> Backbone:
     """dNNM backbone of one mode over the increasing modal-amplitude grid ``alpha``.
 
     ``mode``/``omega_target``: which linearised stuck mode of harmonic 1 to follow (index in
@@ -108,7 +111,8 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     (default initial 0.2, min 1e-4, max 0.5). ``gauge_reference``: position of zero modes while
     they are undetermined at the first point (default 0). ``alpha_start``: where the continuation
     starts from the linear stuck mode (default: half the smallest amplitude at which, in the
-    linear stuck mode, a pair would slip or open, if below ``alpha[0]``).
+    linear stuck mode, a pair would slip or open, if below ``alpha[0]``). ``drift_tol``: relative
+    size of the dropped rigid-body equilibrium above which a converged point gets status DRIFT.
     """
     t0 = time.perf_counter()
     alpha = np.asarray(alpha, float)
@@ -126,7 +130,7 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     if alpha_start is None:
         alpha_start = min(alpha[0], 0.5 * _linear_limit(structure, contacts, phi))
     z0, phase_index = _initial_guess(model, phi, omega0, alpha_start)
-    problem = EPMCProblem(model, phase_index)
+    problem = EPMCProblem(model, phase_index, drift_tol)
     run = natural(problem.fun, problem.dfun_ds, z0, np.log(alpha), problem.scale, steps, tol,
                   max_iter, accept=problem.accept, s_start=np.log(alpha_start))
     return _collect(run, model, alpha, problem, time.perf_counter() - t0)

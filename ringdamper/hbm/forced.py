@@ -20,14 +20,15 @@ class ForcedProblem:
             raise ValueError("the condensed model must be built with forced=True")
         self.model = model
 
-    def fun(self, z: np.ndarray):
-        ev = self.model.evaluate(z[:-1], z[-1], 0.0)
-        return ev.r, np.hstack([ev.J, ev.dr_domega[:, None]]), ev.trivial, self.model.n_core, ev
+    def fun(self, z: np.ndarray, jacobian: bool = True):
+        ev = self.model.evaluate(z[:-1], z[-1], 0.0, jacobian)
+        J = np.hstack([ev.J, ev.dr_domega[:, None]]) if jacobian else None
+        return ev.r, J, ev.trivial, self.model.n_core, ev
 
     def at_frequency(self, omega: float):
         """Residual of ``y`` alone at fixed ω (square)."""
-        def fun(y):
-            ev = self.model.evaluate(y, omega, 0.0)
+        def fun(y, jacobian=True):
+            ev = self.model.evaluate(y, omega, 0.0, jacobian)
             return ev.r, ev.J, ev.trivial, self.model.n_core, ev
         return fun
 

@@ -54,26 +54,40 @@ class NewtonResult:
 
 
 def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarray],
-           tol: float = 1e-10, max_iter: int = 20) -> NewtonResult:
-    """Solve ``r(z) = 0``. ``fun(z) -> (r, J, trivial, n_core, payload)``. Converged when the
-    Newton step computed at ``z`` satisfies ``max |δz| / scale(z) ≤ tol``; ``z`` (with its
-    evaluation and factorisation) is returned, so outputs and tangents are consistent with it."""
+           tol: float = 1e-10, max_iter: int = 20, lambda_min: float = 1.0 / 256) -> NewtonResult:
+    """Damped Newton for ``r(z) = 0``; ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)``
+    (``J`` may be None when ``jacobian`` is false).
+
+    Converged when the Newton step computed at ``z`` satisfies ``max |δz| / scale(z) ≤ tol``;
+    ``z`` (with its evaluation and factorisation) is returned, so outputs and tangents are
+    consistent with it. Damping (Deuflhard's natural monotonicity test, affine invariant): a step
+    ``λ δz`` is accepted when the simplified correction ``J(z)⁻¹ r(z + λδz)`` is shorter than
+    ``(1 − λ/4) |δz|``, else λ is halved down to ``lambda_min``. This breaks the cycles that plain
+    Newton falls into on the piecewise-linear AFT residual near stick–slip transitions."""
     z = np.array(z0, float)
-    payload, fac = None, None
+    ev = fun(z, True)
+    fac = None
     for it in range(max_iter + 1):
-        r, J, trivial, n_core, payload = fun(z)
+        r, J, trivial, n_core, payload = ev
         if not (np.all(np.isfinite(r)) and np.all(np.isfinite(J))):
             return NewtonResult(z, False, it, payload, None, "non-finite residual or Jacobian")
-        try:
-            fac = Factorization(J, trivial, n_core)
-        except (np.linalg.LinAlgError, ValueError) as exc:
-            return NewtonResult(z, False, it, payload, None, f"singular Jacobian: {exc}")
+        fac = Factorization(J, trivial, n_core)
         dz = fac.solve(-r)
         if not np.all(np.isfinite(dz)):
             return NewtonResult(z, False, it, payload, fac, "singular Jacobian")
-        if np.max(np.abs(dz) / scale(z)) <= tol:
+        sc = scale(z)
+        step = np.max(np.abs(dz) / sc)
+        if step <= tol:
             return NewtonResult(z, True, it, payload, fac)
         if it == max_iter:
             break
-        z = z + dz
+        lam = 1.0
+        while True:
+            rt = fun(z + lam * dz, False)[0]
+            bar = fac.solve(-rt) if np.all(np.isfinite(rt)) else np.full(z.size, np.inf)
+            if np.max(np.abs(bar) / sc) <= (1.0 - lam / 4) * step or lam <= lambda_min:
+                break
+            lam *= 0.5
+        z = z + lam * dz
+        ev = fun(z, True)
     return NewtonResult(z, False, max_iter, payload, fac, f"no convergence in {max_iter} iterations")

@@ -47,7 +47,7 @@ def multi_dof(H=3, zero_tol=1e-9):
         for dof in range(2):
             a, b = 2 * i + dof, 2 * j + dof
             K[np.ix_([a, b], [a, b])] += kk * np.array([[1, -1], [-1, 1]])
-    K += np.diag([5e4, 6e4, 0.0, 0.0, 3e4, 2e4])             # ground springs
+    K += np.diag([5e4, 1.5e5, 0.0, 0.0, 3e4, 9e4])            # ground springs
     K[0, 1] = K[1, 0] = 8e3                                  # in-plane coupling of A
     B = np.zeros((6, 6))
     B[0, 3], B[1, 2], B[2, 2], B[2, 3] = 1.0, 1.0, 0.4, 0.3  # pair 0: n = yB, t1 = xB, t2 mixed
@@ -55,7 +55,7 @@ def multi_dof(H=3, zero_tol=1e-9):
     e = np.zeros(6)
     e[0] = 1.0
     st = Structure.real(M, K, B, e, e, H=H, zero_tol=zero_tol)
-    contacts = FrictionContacts(kn=np.array([2e5, 2e5]), kt=np.array([1e5, 8e4]), mu=0.3,
+    contacts = FrictionContacts(kn=np.array([2e5, 2e5]), kt=np.array([1e5, 1e5]), mu=0.05,
                                 N0=np.array([30.0, 0.0]), gap=np.array([0.0, 2e-4]))
     return st, contacts
 
@@ -72,9 +72,9 @@ def free_body(H=1, normal_coupling=0.0):
     return st, FrictionContacts(kn=1e5, kt=3e4, mu=0.3, N0=50.0, gap=0.0)
 
 
-def cyclic_sector(seed=3):
-    """Sector of a toy bladed disk with a free ring: DoFs ``[disk n, t1, t2, ring n, t1, t2,
-    blade]``. Disk held to the ground, disk–disk and ring–ring springs to the next sector, ring
+def cyclic_sector(seed=3, ring_support=3e3, kb=2e4):
+    """Sector of a toy bladed disk with a ring: DoFs ``[disk n, t1, t2, ring n, t1, t2, blade]``.
+    With ``ring_support = 0`` the ring's rotation and axial motion are free (held by friction). Disk held to the ground, disk–disk and ring–ring springs to the next sector, ring
     radial hoop spring to the ground, blade on the disk's axial DoF; one contact pair ring–disk.
     Returns ``(M0, M1, K0, K1, B)`` with the sector energy coupling ``x_jᵀ K1 x_{j+1}``."""
     rng = np.random.default_rng(seed)
@@ -92,7 +92,9 @@ def cyclic_sector(seed=3):
         K0[3 + i, 3 + i] += 2 * kr[i]
         K1[3 + i, 3 + i] -= kr[i]
     K0[3, 3] += 8e3                                          # ring hoop stiffness
-    kb = 7e3                                                  # blade on disk axial DoF
+    K0[4, 4] += ring_support                                 # optional elastic ring support
+    K0[5, 5] += ring_support
+    # blade on the disk axial DoF (stiffness kb)
     K0[np.ix_([2, 6], [2, 6])] += kb * np.array([[1, -1], [-1, 1]])
     A = 0.05 * rng.standard_normal((3, 3))
     K0[:3, :3] += 1e4 * (A + A.T)                             # some coupling inside the disk
@@ -103,8 +105,8 @@ def cyclic_sector(seed=3):
     return M0, M1, K0, K1, B
 
 
-def cyclic_structure(n_sectors=6, engine_order=2, H=5):
-    M0, M1, K0, K1, B = cyclic_sector()
+def cyclic_structure(n_sectors=6, engine_order=2, H=5, ring_support=3e3, kb=2e4):
+    M0, M1, K0, K1, B = cyclic_sector(ring_support=ring_support, kb=kb)
     resp = np.zeros(7)
     resp[6] = 1.0
 

@@ -35,7 +35,9 @@ class Backbone:
     converged, see :class:`Status`), ``reason``, Newton ``iterations``, contact displacement and
     force slots ``d``, ``lam`` ``(nα, C, p)``, modal coordinates ``eta[h]`` ``(nα, m_h)`` of all
     modes, and ``drift`` (largest dropped rigid-body equilibrium, see the gauge). ``branch``
-    holds every accepted continuation point ``(α, ω, ξ)``; ``model`` the condensed HBM."""
+    holds every accepted continuation point ``(α, ω, ξ)``; ``model`` the condensed HBM and
+    ``phase_index`` the unknown fixed by the phase condition (what :meth:`state` and
+    :class:`EPMCProblem` need to restart from a point)."""
 
     alpha: np.ndarray
     omega: np.ndarray
@@ -50,7 +52,13 @@ class Backbone:
     drift: np.ndarray
     branch: np.ndarray
     model: CondensedHBM = field(repr=False)
+    phase_index: int = -1
     wall_time: float = 0.0
+
+    def state(self, i: int) -> np.ndarray:
+        """Unknown vector ``z = [y, ω, ξ]`` of grid point ``i``."""
+        y = self.model.pack(self.d[i], [e[i] for e in self.eta])
+        return np.r_[y, self.omega[i], self.xi[i]]
 
     @property
     def H(self) -> int:
@@ -201,4 +209,4 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall) -> Bac
     branch = np.array([(np.exp(p.s), p.z[-2], p.z[-1]) for p in run.branch]).reshape(-1, 3)
     return Backbone(alpha=alpha, omega=omega, xi=xi, zeta=xi / (2 * omega), status=status,
                     reason=reason, iterations=iters, d=d, lam=lam, eta=eta, drift=drift,
-                    branch=branch, model=model, wall_time=wall)
+                    branch=branch, model=model, phase_index=problem.phase_index, wall_time=wall)

@@ -64,7 +64,11 @@ def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarr
     ``λ δz`` is accepted when the simplified correction ``J(z)⁻¹ r(z + λδz)`` is shorter than
     ``(1 − λ/4) |δz|``, else λ is halved down to ``lambda_min``. This breaks the cycles that plain
     Newton falls into on the piecewise-linear AFT residual near stick–slip transitions."""
-    z = np.array(z0, float)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        return _damped_newton(fun, np.array(z0, float), scale, tol, max_iter, lambda_min)
+
+
+def _damped_newton(fun, z, scale, tol, max_iter, lambda_min):
     ev = fun(z, True)
     fac = None
     for it in range(max_iter + 1):

@@ -34,7 +34,7 @@ def two_dof(H=1, force_dof=0):
     B = np.array([[0.0, 0.0], [0.0, 1.0], [0.0, 0.0]])
     e = np.eye(2)[force_dof]
     st = Structure.real(M, K, B, e, e, H=H)
-    return st, FrictionContacts(kn=1e6, kt=2e4, mu=0.25, N0=20.0, gap=0.0)
+    return st, FrictionContacts(kn=1e6, kt=1e3, mu=0.25, N0=20.0, gap=0.0)
 
 
 def multi_dof(H=3, zero_tol=1e-9):

@@ -1,0 +1,213 @@
+"""Predictor–corrector continuation: natural parameter (log α for the dNNM) and pseudo-arc-length
+(excitation frequency for the forced response), after Allgower & Georg (2003).
+
+Common rules: tangent predictor from the factorised Jacobian of the last converged point, Newton
+corrector, step grown ×1.5 after ≤ 3 iterations and halved after ≥ 8, halved on failure, and a
+corrector that moves farther than its own predictor step (or than ``jump_floor`` in the scaled
+norm) is rejected as a branch jump. Failures never raise: they end the run with a status.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import IntEnum
+from typing import Any, Callable
+
+import numpy as np
+
+from ringdamper.hbm.newton import Factorization, NewtonResult, newton
+
+
+class Status(IntEnum):
+    """Per-point status (0 = converged), stored with every result."""
+
+    CONVERGED = 0
+    NO_CONVERGENCE = 1       # step size fell below its minimum
+    NOT_REACHED = 2          # continuation stopped before this point
+    DRIFT = 3                # converged, but a free body is not in mean equilibrium (ratchets)
+    MAX_POINTS = 4           # arc-length budget exhausted before the end of the range
+
+
+@dataclass
+class StepControl:
+    """Step-size rules (in the continuation parameter or arc length)."""
+
+    initial: float
+    minimum: float
+    maximum: float
+    grow: float = 1.5
+    easy: int = 3            # iterations at or below which the step grows
+    hard: int = 8            # iterations at or above which the step shrinks
+    jump_floor: float = 0.05
+
+    def adapt(self, ds: float, iterations: int) -> float:
+        if iterations <= self.easy:
+            ds *= self.grow
+        elif iterations >= self.hard:
+            ds *= 0.5
+        return min(ds, self.maximum)
+
+
+@dataclass
+class ContinuationPoint:
+    s: float
+    z: np.ndarray
+    payload: Any
+    iterations: int
+
+
+@dataclass
+class NaturalResult:
+    """Solutions at the requested parameter values (``None`` where not converged), their
+    statuses and reasons, and every accepted point of the branch."""
+
+    grid: np.ndarray
+    points: list
+    status: np.ndarray
+    reason: list
+    branch: list = field(default_factory=list)
+
+
+def _blocked(z_new, z_pred, z_old, scale, floor):
+    sc = scale(z_old)
+    corr = np.max(np.abs(z_new - z_pred) / sc)
+    step = np.max(np.abs(z_pred - z_old) / sc)
+    return corr > max(step, floor)
+
+
+def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
+            scale: Callable, steps: StepControl, tol: float, max_iter: int,
+            accept: Callable | None = None, s_start: float | None = None) -> NaturalResult:
+    """Continuation in the scalar parameter ``s`` from ``s_start`` (default ``grid[0]``; ``z0``
+    is the guess there) over the increasing ``grid``, landing exactly on every grid value (so grid
+    outputs are converged solutions, not interpolants).
+
+    ``fun(z, s, jacobian) -> (r, J, trivial, n_core, payload)``; ``dfun_ds(z, s)`` is ``∂r/∂s``;
+    ``accept(z, payload)`` is called on every accepted point (e.g. to update a gauge).
+    """
+    grid = np.asarray(grid, float)
+    n = grid.size
+    points, status = [None] * n, np.full(n, Status.NOT_REACHED, int)
+    reason = ["not reached"] * n
+    out = NaturalResult(grid, points, status, reason)
+    s = grid[0] if s_start is None else min(s_start, grid[0])
+    res = newton(lambda z, jac: fun(z, s, jac), z0, scale, tol, max_iter)
+    if not res.converged:
+        status[0], reason[0] = Status.NO_CONVERGENCE, f"start point: {res.reason}"
+        return out
+    z, last = res.z, res
+    out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
+    gi = 0
+    if s == grid[0]:
+        _record(out, 0, s, res, accept)
+        gi = 1
+    elif accept is not None:
+        accept(z, res.payload)
+    ds = steps.initial
+    while gi < n:
+        s_t = min(s + ds, grid[gi])
+        on_grid = s_t >= grid[gi] - 1e-12 * max(1.0, abs(grid[gi]))
+        s_t = grid[gi] if on_grid else s_t
+        tangent = last.factorization.solve(-dfun_ds(z, s))
+        z_pred = z + (s_t - s) * tangent
+        res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale, tol, max_iter)
+        if res.converged and not _blocked(res.z, z_pred, z, scale, steps.jump_floor):
+            s, z, last = s_t, res.z, res
+            out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
+            if on_grid:
+                _record(out, gi, s, res, accept)
+                gi += 1
+            elif accept is not None:
+                accept(z, res.payload)
+            ds = steps.adapt(ds, res.iterations)
+            continue
+        ds = 0.5 * (s_t - s)
+        if ds < steps.minimum:
+            why = res.reason if not res.converged else "corrector jumped (possible branch switch)"
+            for k in range(gi, n):
+                status[k] = Status.NO_CONVERGENCE if k == gi else Status.NOT_REACHED
+                reason[k] = (f"step below minimum at s={s:.6g}: {why}" if k == gi
+                             else f"continuation stopped at s={s:.6g}")
+            break
+    return out
+
+
+def _record(out: NaturalResult, i: int, s: float, res: NewtonResult, accept):
+    out.points[i] = ContinuationPoint(s, res.z, res.payload, res.iterations)
+    out.status[i], out.reason[i] = Status.CONVERGED, ""
+    if accept is not None:
+        accept(res.z, res.payload)
+
+
+@dataclass
+class ArclengthResult:
+    points: list
+    tangents: list
+    scales: list
+    status: int
+    reason: str
+
+
+def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.ndarray,
+              steps: StepControl, tol: float, max_iter: int, stop: Callable[[np.ndarray], bool],
+              max_points: int, max_angle: float = np.pi / 4, corner: float = 100.0,
+              rescale: Callable | None = None) -> ArclengthResult:
+    """Pseudo-arc-length continuation of ``r(z) = 0`` (one fewer equation than unknowns).
+
+    ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)``, ``J`` of shape ``(n−1, n)``; ``z0`` a
+    solution; ``direction`` the initial orientation; ``scale`` the variable scaling (arc length is
+    measured on ``u = z / scale``; the corrector stays on the hyperplane normal to the tangent).
+    A step is rejected if the tangent turns by more than ``max_angle``, unless the step has
+    already been refined below ``corner × steps.minimum``: the turn is then a corner of the
+    non-smooth branch (e.g. the stick–slip kink of a Jenkins element). Stops with status 0 when
+    ``stop(z)`` is true. ``rescale(z, scale) -> scale`` may update the scaling after every
+    accepted point (the tangent is carried over in unscaled form). ``scales`` in the result holds
+    the scaling in force at every point.
+    """
+    r0, J0, trivial0, n_core0, payload0 = fun(z0, True)
+    t = _tangent(J0, trivial0, n_core0, direction / scale, scale)
+    pts, tans, scales = [ContinuationPoint(0.0, z0, payload0, 0)], [t], [scale]
+    z, s, ds = z0, 0.0, steps.initial
+    while len(pts) < max_points:
+        zp = z + ds * t * scale
+        plane = t / scale
+
+        def bordered(zz, jac, zp=zp, plane=plane):
+            r, J, trivial, n_core, payload = fun(zz, jac)
+            Jb = np.vstack([J, plane]) if jac else None
+            return np.r_[r, plane @ (zz - zp)], Jb, trivial, n_core, payload
+
+        res = newton(bordered, zp, lambda _: scale, tol, max_iter)
+        ok = res.converged and not _blocked(res.z, zp, z, lambda _: scale, steps.jump_floor)
+        if ok:
+            e = np.zeros(z.size)
+            e[-1] = 1.0
+            x = res.factorization.solve(e) / scale
+            t_new = x / np.linalg.norm(x)
+            ok = np.dot(t_new, t) >= np.cos(max_angle) or ds <= corner * steps.minimum
+        if ok:
+            z, t, s = res.z, t_new, s + ds
+            pts.append(ContinuationPoint(s, z, res.payload, res.iterations))
+            tans.append(t)
+            scales.append(scale)
+            if stop(z):
+                return ArclengthResult(pts, tans, scales, Status.CONVERGED, "")
+            if rescale is not None:
+                new = rescale(z, scale)
+                t = t * scale / new
+                t, scale = t / np.linalg.norm(t), new
+            ds = steps.adapt(ds, res.iterations)
+            continue
+        ds *= 0.5
+        if ds < steps.minimum:
+            why = res.reason if not res.converged else "tangent turned or corrector jumped"
+            return ArclengthResult(pts, tans, scales, Status.NO_CONVERGENCE,
+                                   f"step below minimum: {why}")
+    return ArclengthResult(pts, tans, scales, Status.MAX_POINTS, f"{max_points} points reached")
+
+
+def _tangent(J, trivial, n_core, direction_u, scale):
+    """Unit tangent in scaled variables: ``J (scale·t) = 0`` oriented along ``direction_u``."""
+    e = np.zeros(J.shape[1])
+    e[-1] = 1.0
+    x = Factorization(np.vstack([J, direction_u / scale]), trivial, n_core).solve(e) / scale
+    return x / np.linalg.norm(x)

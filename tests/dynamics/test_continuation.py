@@ -1,0 +1,65 @@
+"""Continuation robustness (test 7): the dNNM continuation crosses the stick-to-slip transition
+with every grid point converged and no gap or reversal in α; impossible requests end with a
+recorded status, never an exception."""
+import numpy as np
+
+from ringdamper.frf import forced_response
+from ringdamper.hbm.continuation import Status
+from ringdamper.hbm.epmc import _linear_limit, epmc
+
+from .systems import multi_dof, two_dof
+
+
+def slip_onset(st, c):
+    _, phi = st.stuck_modes(c.stuck_stiffness().ravel())
+    return _linear_limit(st, c, phi[:, 0])
+
+
+def test_backbone_crosses_stick_slip_without_gaps():
+    st, c = two_dof(H=3)
+    a_slip = slip_onset(st, c)
+    alpha = a_slip * np.logspace(-1, 2, 40)
+    bb = epmc(st, c, alpha, H=3)
+    assert np.all(bb.status == Status.CONVERGED)
+    assert np.all(np.isfinite(bb.omega)) and np.all(np.isfinite(bb.zeta))
+    assert np.all(np.diff(bb.branch[:, 0]) > 0)                   # no reversal in α
+    assert np.all(np.isclose(alpha[:, None], bb.branch[None, :, 0], rtol=1e-12).any(1))  # hit
+    stuck = alpha < a_slip
+    assert np.all(np.abs(bb.zeta[stuck]) < 1e-12)
+    assert np.all(bb.zeta[alpha > 1.05 * a_slip] > 0)
+    assert np.all(np.diff(bb.omega) <= 1e-9 * bb.omega[0])        # softening, monotone
+    # no jump: successive grid points change ω by less than the whole softening / 4
+    assert np.max(np.abs(np.diff(bb.omega))) < 0.25 * (bb.omega[0] - bb.omega[-1])
+
+
+def test_impossible_newton_budget_is_recorded():
+    """No Newton iteration allowed: only the exact linear start converges; the first slipping
+    point fails, the rest are marked unreached, all without an exception."""
+    st, c = two_dof(H=1)
+    alpha = slip_onset(st, c) * np.logspace(-1, 1, 6)
+    bb = epmc(st, c, alpha, H=1, max_iter=0, tol=1e-14)
+    k = int(np.argmax(bb.status != Status.CONVERGED))
+    assert k > 0 and np.all(bb.status[:k] == Status.CONVERGED)
+    assert bb.status[k] == Status.NO_CONVERGENCE and "step below minimum" in bb.reason[k]
+    assert np.all(bb.status[k + 1:] == Status.NOT_REACHED)
+    assert np.all(np.isnan(bb.omega[k:]))
+
+
+def test_branch_point_stops_with_status():
+    """The lowest mode of ``multi_dof`` meets a symmetry-breaking bifurcation (even harmonics)
+    that natural continuation in α cannot cross: the run stops there with statuses."""
+    st, c = multi_dof(H=3)
+    from ringdamper.contact.friction import FrictionContacts
+    c = FrictionContacts(kn=c.kn, kt=np.array([1e5, 8e4]), mu=0.3, N0=c.N0, gap=c.gap)
+    bb = epmc(st, c, np.logspace(-4, -1, 25), H=3, nt=64, mode=0)
+    failed = np.flatnonzero(bb.status != Status.CONVERGED)
+    assert failed.size and np.all(bb.status[:failed[0]] == Status.CONVERGED)
+    assert bb.status[failed[0]] == Status.NO_CONVERGENCE
+    assert np.all(bb.status[failed[0] + 1:] == Status.NOT_REACHED)
+
+
+def test_forced_response_failure_is_recorded():
+    st, c = two_dof(H=1)
+    frf = forced_response(st, c, 10.0, 100.0, 140.0, H=1, max_iter=0, tol=1e-14)
+    assert frf.status == Status.NO_CONVERGENCE and frf.reason
+    assert frf.omega.max() < 140.0

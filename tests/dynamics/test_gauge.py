@@ -1,0 +1,85 @@
+"""Gauge of zero-frequency modes (test 8): a free mass held only by friction on an oscillator.
+
+While the contact sticks, the free body's mean position is determined (its equilibrium is a
+regular equation); once the contact has lost its memory the position is undetermined, the
+explicit gauge ``η_Z = η_ref`` replaces that equilibrium, the DC problem stays regular, and every
+physical output is independent of the gauge value. An unbalanced case (normal load in phase with
+the slip: mean friction force on the free body) is reported with status DRIFT, and so is a free
+ring in the cyclic toy."""
+import numpy as np
+import pytest
+
+from ringdamper.hbm.continuation import Status
+from ringdamper.hbm.epmc import EPMCProblem, epmc
+from ringdamper.hbm.newton import newton
+
+from .systems import cyclic_structure, free_body
+
+
+def _backbone(normal_coupling=0.0, H=3):
+    st, c = free_body(H=H, normal_coupling=normal_coupling)
+    a_slip = 1.0e-3
+    return epmc(st, c, a_slip * np.logspace(-1.5, 0.25, 8), H=H, nt=64, tol=1e-12)
+
+
+def _resolve(bb, i, eta_ref):
+    model = bb.model
+    model.eta_ref = np.atleast_1d(eta_ref).astype(float)
+    problem = EPMCProblem(model, bb.phase_index)
+    z0 = bb.state(i)
+    z0[model.eta_slices[0].start + model.zero_modes] = model.eta_ref
+    res = newton(lambda z, jac: problem.fun(z, np.log(bb.alpha[i]), jac), z0, problem.scale,
+                 tol=1e-12, max_iter=30)
+    assert res.converged
+    return res
+
+
+def test_free_body_backbone_is_regular():
+    bb = _backbone()
+    assert np.all(bb.status == Status.CONVERGED)
+    ev_stick = bb.model.evaluate(bb.state(0)[:-2], bb.omega[0], bb.xi[0])
+    ev_slip = bb.model.evaluate(bb.state(7)[:-2], bb.omega[7], bb.xi[7])
+    assert ev_stick.drift.size == 0                   # held by the stuck contact: no gauge
+    assert ev_slip.drift.size == 1                    # memory lost: gauge on the rigid mode
+    assert bb.zeta[0] == pytest.approx(0.0, abs=1e-14) and bb.zeta[7] > 1e-3
+    assert np.max(bb.drift) < 1e-10                   # symmetric orbit: no mean force
+
+
+def test_outputs_do_not_depend_on_gauge_value():
+    bb = _backbone()
+    model = bb.model
+    zpos = model.eta_slices[0].start + model.zero_modes
+    i = 7                                             # slipping, memory lost
+    a, b = _resolve(bb, i, 0.0), _resolve(bb, i, 0.37)
+    assert a.z[zpos] == pytest.approx(0.0, abs=1e-15) and b.z[zpos] == pytest.approx(0.37)
+    for k in (-2, -1):                                # ω and ξ
+        assert b.z[k] == pytest.approx(a.z[k], rel=1e-10)
+    ea, eb = a.payload, b.payload
+    assert np.allclose(ea.lam, eb.lam, rtol=0, atol=1e-9 * np.abs(ea.lam).max())
+    assert np.allclose(ea.d[1:], eb.d[1:], rtol=0, atol=1e-9 * np.abs(ea.d).max())
+    for h in range(1, model.H + 1):
+        assert np.allclose(ea.eta[h], eb.eta[h], atol=1e-9 * np.abs(ea.eta[1]).max())
+    # the free body moved rigidly by the gauge difference: relative DC shift = Ψ_Z Δη
+    psi = model.modal[0].Psi[:, model.S[0][model.zero_modes]].ravel()
+    assert np.allclose(eb.d[0] - ea.d[0], 0.37 * psi, atol=1e-9 * abs(0.37 * psi).max())
+    # in stick the position is determined: the gauge value is not used
+    s, t = _resolve(bb, 0, 0.0), _resolve(bb, 0, 0.37)
+    assert s.z[zpos] == pytest.approx(t.z[zpos], abs=1e-15)
+
+
+def test_unbalanced_free_body_is_flagged():
+    """Normal load in phase with the tangential motion: once the contact loses its memory the
+    mean friction force on the free body is not zero; the point is converged but flagged."""
+    bb = _backbone(normal_coupling=0.3)
+    assert bb.status[0] == Status.CONVERGED
+    assert np.any(bb.status == Status.DRIFT)
+    drifting = bb.status == Status.DRIFT
+    assert np.all(bb.drift[drifting] > 1e-6) and np.all(np.isfinite(bb.omega[drifting]))
+    assert "ratchets" in bb.reason[int(np.argmax(drifting))]
+
+
+def test_free_ring_in_cyclic_toy_is_flagged():
+    st, c, _ = cyclic_structure(H=1, ring_support=0.0)
+    bb = epmc(st, c, np.geomspace(1e-4, 3e-2, 8), H=1, nt=60, mode=0)
+    assert bb.status[0] == Status.CONVERGED
+    assert bb.status[-1] == Status.DRIFT

@@ -19,11 +19,12 @@ include: "workflow/rules/geometry.smk"
 include: "workflow/rules/modal.smk"
 include: "workflow/rules/static.smk"
 include: "workflow/rules/reduction.smk"
+include: "workflow/rules/dnnm.smk"
 
 
 rule all:
     input:
         f"{RESULTS}/samples.csv",
-        expand(f"{RESULTS}/geometry/{{gid}}/reduced.nc", gid=geometry_ids()),
+        expand(f"{RESULTS}/geometry/{{gid}}/dnnm.nc", gid=geometry_ids()),
         f"{RESULTS}/modal/resonance.yaml",
         f"{RESULTS}/figures/static_contact_maps.png",

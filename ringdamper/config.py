@@ -106,11 +106,27 @@ def _geometry_errors(config: dict) -> list[str]:
     return errors
 
 
+def _solver_errors(config: dict) -> list[str]:
+    """Cross-field rules of the solver sections."""
+    errors = []
+    d = config["dnnm"]
+    if not d["amplitude_max"] > d["amplitude_min"]:
+        errors.append(f"dnnm.amplitude_max = {d['amplitude_max']} must exceed "
+                      f"dnnm.amplitude_min = {d['amplitude_min']}")
+    if d["n_harmonics"] > config["reduction"]["n_harmonics"]:
+        errors.append(f"dnnm.n_harmonics = {d['n_harmonics']} must not exceed "
+                      f"reduction.n_harmonics = {config['reduction']['n_harmonics']}")
+    if d["n_time_samples"] < 2 * d["n_harmonics"] + 1:
+        errors.append(f"dnnm.n_time_samples = {d['n_time_samples']} must be at least "
+                      f"2 n_harmonics + 1 = {2 * d['n_harmonics'] + 1} (sampling theorem)")
+    return errors
+
+
 def validate_config(config: dict[str, Any]) -> dict[str, Any]:
     """Validate ``config`` in place semantics; raise one :class:`ConfigError` listing every problem."""
     errors = _schema_errors(config)
     if not errors:
-        errors = _geometry_errors(config)
+        errors = _geometry_errors(config) + _solver_errors(config)
     if errors:
         raise ConfigError("invalid configuration:\n  - " + "\n  - ".join(errors))
     return config

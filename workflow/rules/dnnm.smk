@@ -1,0 +1,22 @@
+DEFAULT_GID = gid_of((0.0, 0.0, 0.0))
+
+
+rule dnnm:
+    input:
+        reduced=f"{RESULTS}/geometry/{{gid}}/reduced.nc",
+        static=f"{RESULTS}/geometry/{{gid}}/static.nc",
+        default_reduced=f"{RESULTS}/geometry/{DEFAULT_GID}/reduced.nc",
+        default_static=f"{RESULTS}/geometry/{DEFAULT_GID}/static.nc",
+        resonance=f"{RESULTS}/modal/resonance.yaml",
+    output:
+        f"{RESULTS}/geometry/{{gid}}/dnnm.nc",
+    params:
+        kappa=kappa_of,
+    log:
+        f"{RESULTS}/logs/dnnm/{{gid}}.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/dnnm/{{gid}}.tsv"
+    conda:
+        "../../envs/dynamics.yaml"
+    script:
+        "../../scripts/dnnm.py"

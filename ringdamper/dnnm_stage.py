@@ -93,6 +93,8 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
                                "first-harmonic magnitude of the blade-tip Z displacement"),
         "energy_dissipated": variable(("amplitude", "pair"), res.energy_dissipated, "J",
                                       "energy dissipated per cycle by each contact pair"),
+        "energy_damping": variable("amplitude", res.e_damp, "J",
+                                   "energy per cycle of the structural and dNNM damping (E-EBM E_damp)"),
         "status": variable("amplitude", res.status.astype(np.int8), "1",
                            "0 converged, 1 no convergence, 2 not reached, 3 converged with the ring's "
                            "mean rigid-body equilibrium unbalanced (ratcheting), 4 budget"),

@@ -163,7 +163,7 @@ class CondensedHBM:
         H, C, p, npairs = self.H, self.C, self.p, self.npairs
         d = y[:self.n_d].reshape(C, p)
         aft = contact_aft(self.contacts, self.fourier, d.reshape(C, npairs, 3).transpose(1, 2, 0),
-                          jacobian=jacobian or self.zero_modes.size > 0)
+                          jacobian=True if jacobian else ("dc" if self.zero_modes.size else False))
         lam = aft.lam.transpose(2, 0, 1).reshape(C, p).copy()
         lam[0] -= self.static
         D, Lam = to_complex(d, H), to_complex(lam, H)

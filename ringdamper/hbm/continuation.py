@@ -2,8 +2,8 @@
 (excitation frequency for the forced response), after Allgower & Georg (2003).
 
 Common rules: tangent predictor, Newton corrector reusing the last factorisation while it
-contracts fast (:func:`ringdamper.hbm.newton.newton`), step grown ×1.5 when the corrector needed
-at most one new Jacobian and halved after three, halved on failure, and a
+contracts (:func:`ringdamper.hbm.newton.newton`), step grown ×1.5 when the corrector cost at most
+3 Jacobian evaluations + factorisations and halved above 6, halved on failure, and a
 corrector that moves farther than its own predictor step (or than ``jump_floor`` in the scaled
 norm) is rejected as a branch jump. Failures never raise: they end the run with a status.
 """
@@ -36,16 +36,16 @@ class StepControl:
     minimum: float
     maximum: float
     grow: float = 1.5
-    easy: int = 1            # Jacobians at or below which the step grows
-    hard: int = 3            # Jacobians at or above which the step shrinks
+    easy: float = 3.0        # corrector effort (in Jacobian factorisations) below which ds grows
+    hard: float = 6.0        # effort above which ds shrinks
     jump_floor: float = 0.05
 
     def adapt(self, ds: float, res) -> float:
-        """New step from the corrector's effort: Jacobian factorisations (the cost) and, for
-        chord iterations, their number (``> 12`` counts as hard)."""
-        if res.jacobians <= self.easy and res.iterations <= 8:
+        """New step from the corrector's effort (wall time in units of one Jacobian
+        factorisation, :attr:`NewtonResult.effort`): cheap chord iterations count little."""
+        if res.effort <= self.easy:
             ds *= self.grow
-        elif res.jacobians >= self.hard or res.iterations > 12:
+        elif res.effort >= self.hard:
             ds *= 0.5
         return min(ds, self.maximum)
 

@@ -65,7 +65,7 @@ class Peak:
 
 def forced_response(structure: Structure, contacts: FrictionContacts, gamma: float,
                     omega_start: float, omega_end: float, *, H: int = 1, nt: int | None = None,
-                    zeta_s: float = 0.0, pole_band: float = 0.05, tol: float = 1e-10,
+                    zeta_s: float = 0.0, pole_band: float = 0.05, tol: float = 1e-8,
                     max_iter: int = 20, steps: StepControl | None = None,
                     max_points: int = 1000) -> FRF:
     """Forced response at forcing amplitude ``gamma`` [N] from ``omega_start`` to ``omega_end``.

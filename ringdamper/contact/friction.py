@@ -99,30 +99,37 @@ class ContactAFT:
 
 
 def contact_aft(contacts: FrictionContacts, fourier: Fourier, d: np.ndarray,
-                jacobian: bool = True, tol: float = 1e-13, max_periods: int = 500) -> ContactAFT:
+                jacobian: bool | str = True, tol: float = 1e-13,
+                max_periods: int = 500) -> ContactAFT:
     """Periodic contact forces of relative displacements ``d`` ``(npairs, 3, C)`` (slots of
-    :mod:`ringdamper.hbm.fourier`), with the analytical Jacobian if ``jacobian``.
+    :mod:`ringdamper.hbm.fourier`), with the analytical Jacobian if ``jacobian`` (``"dc"``: only
+    its columns for the mean values, ``jac[..., :1]``, which the rigid-body gauge needs).
 
     ``tol``/``max_periods`` control the periodicity check of the Coulomb march.
     """
     cp = contacts
     E, F = fourier.E, fourier.F
+    if jacobian == "dc" and cp.law == "coulomb":
+        full = contact_aft(contacts, fourier, d, True, tol, max_periods)
+        full.jac = full.jac[..., :1]
+        return full
+    basis = E[:, :1] if jacobian == "dc" else E
     dt = fourier.synth(d)                                    # (np, 3, Nt)
     N = cp.N0[:, None] + cp.kn[:, None] * (dt[:, 0] - cp.gap[:, None])
     closed = N > 0
     N = np.where(closed, N, 0.0)
     r = cp.mu[:, None] * N / cp.kt[:, None]                  # slip radius (np, Nt)
     if cp.law == "jenkins":
-        T, dT = _jenkins(cp, E, dt[:, 1:], r, closed, jacobian)
+        T, dT = _jenkins(cp, basis, dt[:, 1:], r, closed, bool(jacobian))
     else:
         T, dT = _coulomb(cp, E, dt[:, 1:], r, closed, jacobian, tol, max_periods)
     lam = np.concatenate([fourier.analyse(N)[:, None], fourier.analyse(T)], axis=1)
     jac = None
     if jacobian:
-        npairs, C = d.shape[0], fourier.C
-        jac = np.zeros((npairs, 3, C, 3, C))
-        jac[:, 0, :, 0, :] = np.einsum("ck,qk,kd->qcd", F, cp.kn[:, None] * closed, E)
-        jac[:, 1:] = np.einsum("ck,qjkx->qjcx", F, dT).reshape(npairs, 2, C, 3, C)
+        npairs, C, Cb = d.shape[0], fourier.C, basis.shape[1]
+        jac = np.zeros((npairs, 3, C, 3, Cb))
+        jac[:, 0, :, 0, :] = np.einsum("ck,qk,kd->qcd", F, cp.kn[:, None] * closed, basis)
+        jac[:, 1:] = np.einsum("ck,qjkx->qjcx", F, dT).reshape(npairs, 2, C, 3, Cb)
     return ContactAFT(lam=lam, jac=jac, normal=N, tangential=T)
 
 
@@ -162,7 +169,8 @@ def _clip_with_source(x, sx, lo, hi, slo, shi):
 
 
 def _jenkins(cp, E, d, r, closed, jacobian):
-    """Two independent Jenkins elements: forces ``(np, 2, Nt)`` and ``∂T/∂c`` ``(np, 2, Nt, 3C)``."""
+    """Two independent Jenkins elements: forces ``(np, 2, Nt)`` and ``∂T/∂c`` ``(np, 2, Nt, 3C)``
+    for the coefficients of the basis ``E`` (Nt × C: all slots, or the mean only)."""
     kt = cp.kt[:, None, None]
     w, src = play_operator(d - r[:, None], d + r[:, None], 0.0)
     T = kt * (d - w)

@@ -107,7 +107,9 @@ class CondensedHBM:
             if np.any(np.linalg.norm(PsiZ, axis=0) == 0):
                 raise ValueError("a zero-frequency mode of harmonic 0 moves no contact: mechanism")
         self.eta_ref = np.zeros(self.zero_modes.size)
-        self.gauge_tol = gauge_tol
+        kscale = max(np.max(contacts.kn), np.max(contacts.kt))
+        self._null_tol = gauge_tol * kscale * (np.linalg.norm(PsiZ, 2) if self.zero_modes.size
+                                               else 0.0)
 
     # ---- layout helpers -------------------------------------------------------------------
     def eta_explicit(self, y: np.ndarray, h: int) -> np.ndarray:
@@ -161,7 +163,7 @@ class CondensedHBM:
         H, C, p, npairs = self.H, self.C, self.p, self.npairs
         d = y[:self.n_d].reshape(C, p)
         aft = contact_aft(self.contacts, self.fourier, d.reshape(C, npairs, 3).transpose(1, 2, 0),
-                          jacobian=jacobian or self.zero_modes.size > 0)
+                          jacobian=True if jacobian else ("dc" if self.zero_modes.size else False))
         lam = aft.lam.transpose(2, 0, 1).reshape(C, p).copy()
         lam[0] -= self.static
         D, Lam = to_complex(d, H), to_complex(lam, H)
@@ -266,10 +268,8 @@ class CondensedHBM:
         rows = self.eta_slices[0].start + self.zero_modes     # η_Z unknowns and their equilibria
         PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]           # (p, nz)
         S = np.einsum("qicj,qjz->qicz", kc[..., 0], PsiZ.reshape(self.npairs, 3, nz)).reshape(-1, nz)
-        _, sv, Vt = np.linalg.svd(S, full_matrices=True)
-        sv = np.concatenate([sv, np.zeros(nz - sv.size)])
-        kscale = max(np.max(self.contacts.kn), np.max(self.contacts.kt))
-        null = sv <= self.gauge_tol * kscale * np.linalg.norm(PsiZ, 2)
+        _, sv, Vt = np.linalg.svd(S, full_matrices=False)
+        null = np.r_[sv, np.zeros(nz - sv.size)] <= self._null_tol
         if not np.any(null):
             return np.zeros(0)
         V = np.eye(nz) if np.all(null) else Vt.T * np.sign(Vt[np.arange(nz), np.argmax(np.abs(Vt), 1)])

@@ -1,8 +1,9 @@
 """Predictor–corrector continuation: natural parameter (log α for the dNNM) and pseudo-arc-length
 (excitation frequency for the forced response), after Allgower & Georg (2003).
 
-Common rules: tangent predictor from the factorised Jacobian of the last converged point, Newton
-corrector, step grown ×1.5 after ≤ 3 iterations and halved after ≥ 8, halved on failure, and a
+Common rules: tangent predictor, Newton corrector reusing the last factorisation while it
+contracts (:func:`ringdamper.hbm.newton.newton`), step grown ×1.5 when the corrector cost at most
+3 Jacobian evaluations + factorisations and halved above 6, halved on failure, and a
 corrector that moves farther than its own predictor step (or than ``jump_floor`` in the scaled
 norm) is rejected as a branch jump. Failures never raise: they end the run with a status.
 """
@@ -35,14 +36,16 @@ class StepControl:
     minimum: float
     maximum: float
     grow: float = 1.5
-    easy: int = 3            # iterations at or below which the step grows
-    hard: int = 8            # iterations at or above which the step shrinks
+    easy: float = 3.0        # corrector effort (in Jacobian factorisations) below which ds grows
+    hard: float = 6.0        # effort above which ds shrinks
     jump_floor: float = 0.05
 
-    def adapt(self, ds: float, iterations: int) -> float:
-        if iterations <= self.easy:
+    def adapt(self, ds: float, res) -> float:
+        """New step from the corrector's effort (wall time in units of one Jacobian
+        factorisation, :attr:`NewtonResult.effort`): cheap chord iterations count little."""
+        if res.effort <= self.easy:
             ds *= self.grow
-        elif iterations >= self.hard:
+        elif res.effort >= self.hard:
             ds *= 0.5
         return min(ds, self.maximum)
 
@@ -109,7 +112,8 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
         s_t = grid[gi] if on_grid else s_t
         tangent = last.factorization.solve(-dfun_ds(z, s))
         z_pred = z + (s_t - s) * tangent
-        res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale, tol, max_iter)
+        res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale, tol, max_iter,
+                     factorization=last.factorization)
         if res.converged and not _blocked(res.z, z_pred, z, scale, steps.jump_floor):
             s, z, last = s_t, res.z, res
             out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
@@ -118,7 +122,7 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
                 gi += 1
             elif accept is not None:
                 accept(z, res.payload)
-            ds = steps.adapt(ds, res.iterations)
+            ds = steps.adapt(ds, res)
             continue
         ds = 0.5 * (s_t - s)
         if ds < steps.minimum:
@@ -156,6 +160,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
     ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)``, ``J`` of shape ``(n−1, n)``; ``z0`` a
     solution; ``direction`` the initial orientation; ``scale`` the variable scaling (arc length is
     measured on ``u = z / scale``; the corrector stays on the hyperplane normal to the tangent).
+    The first tangent comes from the Jacobian, the next ones are secants of accepted steps.
     A step is rejected if the tangent turns by more than ``max_angle``, unless the step has
     already been refined below ``corner × steps.minimum``: the turn is then a corner of the
     non-smooth branch (e.g. the stick–slip kink of a Jenkins element). Stops with status 0 when
@@ -167,6 +172,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
     t = _tangent(J0, trivial0, n_core0, direction / scale, scale)
     pts, tans, scales = [ContinuationPoint(0.0, z0, payload0, 0)], [t], [scale]
     z, s, ds = z0, 0.0, steps.initial
+    last_fac = None
     while len(pts) < max_points:
         zp = z + ds * t * scale
         plane = t / scale
@@ -176,16 +182,14 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
             Jb = np.vstack([J, plane]) if jac else None
             return np.r_[r, plane @ (zz - zp)], Jb, trivial, n_core, payload
 
-        res = newton(bordered, zp, lambda _: scale, tol, max_iter)
+        res = newton(bordered, zp, lambda _: scale, tol, max_iter, factorization=last_fac)
         ok = res.converged and not _blocked(res.z, zp, z, lambda _: scale, steps.jump_floor)
-        if ok:
-            e = np.zeros(z.size)
-            e[-1] = 1.0
-            x = res.factorization.solve(e) / scale
+        if ok:                                       # secant tangent of the accepted step
+            x = (res.z - z) / scale
             t_new = x / np.linalg.norm(x)
             ok = np.dot(t_new, t) >= np.cos(max_angle) or ds <= corner * steps.minimum
         if ok:
-            z, t, s = res.z, t_new, s + ds
+            z, t, s, last_fac = res.z, t_new, s + ds, res.factorization
             pts.append(ContinuationPoint(s, z, res.payload, res.iterations))
             tans.append(t)
             scales.append(scale)
@@ -195,7 +199,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
                 new = rescale(z, scale)
                 t = t * scale / new
                 t, scale = t / np.linalg.norm(t), new
-            ds = steps.adapt(ds, res.iterations)
+            ds = steps.adapt(ds, res)
             continue
         ds *= 0.5
         if ds < steps.minimum:

@@ -107,7 +107,7 @@ class EPMCProblem:
 
 def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
          nt: int | None = None, mode: int = 0, omega_target: float | None = None,
-         pole_band: float = 0.1, tol: float = 1e-10, max_iter: int = 20,
+         pole_band: float = 0.1, tol: float = 1e-8, max_iter: int = 20,
          steps: StepControl | None = None, gauge_reference: np.ndarray | None = None,
          alpha_start: float | None = None, drift_tol: float = 1e-8) -> Backbone:
     """dNNM backbone of one mode over the increasing modal-amplitude grid ``alpha``.

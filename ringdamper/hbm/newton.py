@@ -9,6 +9,7 @@ active pairs.
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from typing import Any, Callable
 
@@ -51,47 +52,106 @@ class NewtonResult:
     payload: Any                      # the problem's evaluation at ``z``
     factorization: Factorization | None
     reason: str = ""
+    jacobians: int = 0                # Jacobian factorisations performed
+    effort: float = 0.0               # wall time in units of one Jacobian factorisation
 
 
 def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarray],
-           tol: float = 1e-10, max_iter: int = 20, lambda_min: float = 1.0 / 256) -> NewtonResult:
-    """Damped Newton for ``r(z) = 0``; ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)``
-    (``J`` may be None when ``jacobian`` is false).
+           tol: float = 1e-10, max_iter: int = 20, factorization: Factorization | None = None,
+           theta_max: float = 0.9, lambda_min: float = 1.0 / 256) -> NewtonResult:
+    """Newton's method with Jacobian reuse and damping for ``r(z) = 0``.
 
-    Converged when the Newton step computed at ``z`` satisfies ``max |δz| / scale(z) ≤ tol``;
-    ``z`` (with its evaluation and factorisation) is returned, so outputs and tangents are
-    consistent with it. Damping (Deuflhard's natural monotonicity test, affine invariant): a step
-    ``λ δz`` is accepted when the simplified correction ``J(z)⁻¹ r(z + λδz)`` is shorter than
-    ``(1 − λ/4) |δz|``, else λ is halved down to ``lambda_min``. This breaks the cycles that plain
-    Newton falls into on the piecewise-linear AFT residual near stick–slip transitions."""
+    ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)`` (``J`` None when not requested).
+    Converged when the step ``δz`` computed at ``z`` satisfies ``max |δz| / scale(z) ≤ tol``; ``z``
+    and its evaluation are returned (outputs are consistent with ``z``), with the factorisation
+    last used (a tangent predictor may reuse it).
+
+    Steps (after Deuflhard, *Newton Methods for Nonlinear Problems*, 2004):
+
+    * chord steps with the given (or last) factorisation while they contract (rate θ < 
+      ``theta_max``) and the iterations still needed at that rate cost less than a new Jacobian
+      (both timed as they run); otherwise the Jacobian is recomputed at the better point;
+    * after a fresh Jacobian, a damped step ``λ δz``: accepted when the simplified correction
+      ``J⁻¹ r(z + λδz)`` is shorter than ``(1 − λ/4) |δz|`` (natural monotonicity test), else λ
+      is halved down to ``lambda_min``. This breaks the cycles plain Newton falls into on the
+      piecewise-linear AFT residual near stick–slip transitions.
+
+    ``max_iter`` counts chord and Newton iterations; one iteration of each kind is allowed per
+    two of ``max_iter`` beyond the first ``max_iter`` Newton steps (chord steps are cheap).
+    """
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        return _damped_newton(fun, np.array(z0, float), scale, tol, max_iter, lambda_min)
+        return _newton(fun, np.array(z0, float), scale, tol, max_iter, factorization,
+                       theta_max, lambda_min)
 
 
-def _damped_newton(fun, z, scale, tol, max_iter, lambda_min):
-    ev = fun(z, True)
-    fac = None
-    for it in range(max_iter + 1):
-        r, J, trivial, n_core, payload = ev
-        if not (np.all(np.isfinite(r)) and np.all(np.isfinite(J))):
-            return NewtonResult(z, False, it, payload, None, "non-finite residual or Jacobian")
-        fac = Factorization(J, trivial, n_core)
+def _newton(fun, z, scale, tol, max_iter, fac, theta_max, lambda_min):
+    start = time.perf_counter()
+    res = _iterate(fun, z, scale, tol, max_iter, fac, theta_max, lambda_min)
+    cost = getattr(res.factorization, "cost", None)
+    res.effort = (time.perf_counter() - start) / cost if cost else float(res.jacobians)
+    return res
+
+
+def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, lambda_min):
+    n_jac = n_newton = 0
+    fresh = fac is None
+    t_res = None
+    ev = fun(z, fresh)
+    it = 0
+    while True:
+        if fresh:
+            t0 = time.perf_counter()
+            if ev[1] is None:
+                ev = fun(z, True)
+            r, J, trivial, n_core, payload = ev
+            if not (np.all(np.isfinite(r)) and np.all(np.isfinite(J))):
+                return NewtonResult(z, False, it, payload, None, "non-finite residual or Jacobian",
+                                    n_jac)
+            fac = Factorization(J, trivial, n_core)
+            fac.cost = time.perf_counter() - t0
+            n_jac += 1
+        r, payload = ev[0], ev[4]
         dz = fac.solve(-r)
-        if not np.all(np.isfinite(dz)):
-            return NewtonResult(z, False, it, payload, fac, "singular Jacobian")
         sc = scale(z)
         step = np.max(np.abs(dz) / sc)
+        if not np.isfinite(step):
+            if fresh:
+                return NewtonResult(z, False, it, payload, fac, "singular Jacobian", n_jac)
+            fresh = True
+            continue
         if step <= tol:
-            return NewtonResult(z, True, it, payload, fac)
-        if it == max_iter:
+            return NewtonResult(z, True, it, payload, fac, "", n_jac)
+        if n_newton >= max_iter or it >= 4 * max_iter:
             break
-        lam = 1.0
-        while True:
-            rt = fun(z + lam * dz, False)[0]
-            bar = fac.solve(-rt) if np.all(np.isfinite(rt)) else np.full(z.size, np.inf)
-            if np.max(np.abs(bar) / sc) <= (1.0 - lam / 4) * step or lam <= lambda_min:
-                break
-            lam *= 0.5
-        z = z + lam * dz
-        ev = fun(z, True)
-    return NewtonResult(z, False, max_iter, payload, fac, f"no convergence in {max_iter} iterations")
+        it += 1
+        if fresh:                                    # damped Newton step
+            n_newton += 1
+            lam = 1.0
+            while True:
+                t0 = time.perf_counter()
+                trial = fun(z + lam * dz, False)
+                bar = _norm(fac, trial[0], sc)
+                t_res = time.perf_counter() - t0
+                if bar <= (1.0 - lam / 4) * step or lam <= lambda_min:
+                    break
+                lam *= 0.5
+            z, ev, fresh = z + lam * dz, trial, lam < 1.0
+            continue
+        t0 = time.perf_counter()                     # chord step
+        trial = fun(z + dz, False)
+        bar = _norm(fac, trial[0], sc)
+        t_res = time.perf_counter() - t0
+        theta = bar / step
+        if theta < theta_max:
+            needed = np.log(tol / bar) / np.log(theta) if theta > 0 else 0.0
+            if needed * t_res <= getattr(fac, "cost", np.inf):
+                z, ev = z + dz, trial
+                continue
+        if bar < step:
+            z, ev = z + dz, trial
+        fresh = True
+    return NewtonResult(z, False, it, payload, fac, f"no convergence in {it} iterations", n_jac)
+
+
+def _norm(fac, r, sc):
+    return np.max(np.abs(fac.solve(-r)) / sc) if np.all(np.isfinite(r)) else np.inf

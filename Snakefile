@@ -28,3 +28,4 @@ rule all:
         expand(f"{RESULTS}/geometry/{{gid}}/dnnm.nc", gid=geometry_ids()),
         f"{RESULTS}/modal/resonance.yaml",
         f"{RESULTS}/figures/static_contact_maps.png",
+        f"{RESULTS}/figures/backbones_reference_rings.png",

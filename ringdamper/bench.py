@@ -15,6 +15,8 @@ import time
 import traceback
 from pathlib import Path
 
+import numpy as np
+
 from .config import load_config
 
 
@@ -64,13 +66,63 @@ def _static_chain(config: dict) -> dict:
     return {"rings": rows}
 
 
+def _geometry_chain(config: dict) -> dict:
+    """The per-geometry chain on the default ring, one core: mesh -> static -> reduced -> dnnm."""
+    from .dnnm_stage import contacts_from_static, run_dnnm, structure_from_reduced, target_stuck_frequency
+    from .fem.model import build_model
+    from .geometry.sector import build_sector
+    from .reduction import modal_basis, reduce_sector, reduced_dataset
+    from .static_stage import solve_static, static_dataset
+
+    kappa = (0.0, 0.0, 0.0)
+    times = {}
+    t = time.perf_counter()
+    model = build_model(build_sector(config, kappa), config)
+    times["mesh_model_s"] = time.perf_counter() - t
+    t = time.perf_counter()
+    result, prob = solve_static(model, config)
+    static = static_dataset(model, result, prob, kappa, config["operation"]["speed_rpm"])
+    times["static_s"] = time.perf_counter() - t
+    t = time.perf_counter()
+    red = config["reduction"]
+    rs = reduce_sector(model, config["operation"]["engine_order"], n_harmonics=red["n_harmonics"],
+                       n_fi=red["n_fixed_interface_modes"], n_if=red["n_interface_modes"])
+    reduced = reduced_dataset(rs, kappa, [modal_basis(rh, rs.B, rs.response_index) for rh in rs.harmonics])
+    times["reduced_s"] = time.perf_counter() - t
+    target_hz = 936.45
+    structure = structure_from_reduced(reduced, 1)
+    contacts = contacts_from_static(static, config["contact"], config["dnnm"]["friction_law"])
+    w_default = target_stuck_frequency(structure, contacts, target_hz)
+    out = {}
+    for H in sorted({1, config["dnnm"]["n_harmonics"]}):
+        cfg = {**config, "dnnm": {**config["dnnm"], "n_harmonics": H,
+                                  "n_time_samples": max(config["dnnm"]["n_time_samples"], 4 * H + 4)}}
+        t = time.perf_counter()
+        ds = run_dnnm(reduced, static, cfg, target_hz, w_default)
+        out[f"dnnm_H{H}_s"] = time.perf_counter() - t
+        out[f"dnnm_H{H}_status_counts"] = np.bincount(ds.status.values.astype(int), minlength=5).tolist()
+        out[f"dnnm_H{H}_zeta_max"] = float(np.nanmax(ds.zeta.values))
+    times.update(out)
+    times["chain_default_H_s"] = (times["mesh_model_s"] + times["static_s"] + times["reduced_s"]
+                                  + out[f"dnnm_H{config['dnnm']['n_harmonics']}_s"])
+    return times
+
+
+def _dynamics_synthetic(config: dict) -> dict:
+    """The dynamics core on a synthetic system of the real size (ringdamper.bench_dynamics)."""
+    from .bench_dynamics import run
+
+    return run()
+
+
 def _mesh_convergence(config: dict) -> dict:
     from .convergence import mesh_study
 
     return {"levels": mesh_study(config)}
 
 
-BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "mesh_convergence": _mesh_convergence}
+BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "geometry_chain": _geometry_chain,
+              "dynamics_synthetic": _dynamics_synthetic, "mesh_convergence": _mesh_convergence}
 
 
 def _run_one(name, config, queue):

@@ -21,6 +21,11 @@ def gid_of(kappa):
     return hit.index[0]
 
 
+def reference_gids():
+    """Every reference ring (label -> gid): default, one-at-a-time extremes, the paper's optimum."""
+    return {label: gid_of(k) for label, k in REFERENCE_RINGS.items()}
+
+
 def one_at_a_time_gids():
     """Default ring and the six one-at-a-time extremes of Fig. 11 (label -> gid)."""
     return {label: gid_of(k) for label, k in REFERENCE_RINGS.items() if label != "paper optimum"}

@@ -20,3 +20,20 @@ rule dnnm:
         "../../envs/dynamics.yaml"
     script:
         "../../scripts/dnnm.py"
+
+
+rule backbone_figures:
+    input:
+        dnnm=[f"{RESULTS}/geometry/{gid}/dnnm.nc" for gid in reference_gids().values()],
+        default_static=f"{RESULTS}/geometry/{DEFAULT_GID}/static.nc",
+    output:
+        backbones=report(f"{RESULTS}/figures/backbones_reference_rings.png", category="Nonlinear modes"),
+        energy=report(f"{RESULTS}/figures/energy_map_default.png", category="Nonlinear modes"),
+    params:
+        labels=list(reference_gids()),
+    log:
+        f"{RESULTS}/logs/backbone_figures.log",
+    conda:
+        "../../envs/campaign.yaml"
+    script:
+        "../../scripts/backbone_figures.py"

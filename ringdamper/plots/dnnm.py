@@ -1,0 +1,48 @@
+"""Backbones (paper Figs. 8, 12) and the dissipated-energy map (Fig. 9b)."""
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from .static import _surface_coords
+
+USABLE = (0, 3)  # converged (3: with the ring's mean rigid-body equilibrium unbalanced)
+
+
+def plot_backbones(datasets: dict, path) -> None:
+    """omega0, zeta (%) and gamma (N) against |q_res,z| (mm) for each ring (label -> dnnm dataset)."""
+    fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+    for label, ds in datasets.items():
+        ok = np.isin(ds.status.values, USABLE)
+        q = 1e3 * ds.q_res_z.values[ok]
+        style = {"color": "k", "lw": 2} if label == "default" else {"lw": 1}
+        axes[0].plot(q, ds.omega0.values[ok], label=label, **style)
+        axes[1].plot(q, 100 * ds.zeta.values[ok], **style)
+        axes[2].plot(q, ds.gamma.values[ok], **style)
+    for ax, name in zip(axes, [r"$\omega_0$", r"$\zeta$ (%)", r"$\gamma$ (N)"]):
+        ax.set_xlabel(r"$|q_{res,z}|$ (mm)")
+        ax.set_ylabel(name)
+        ax.grid(alpha=0.3)
+    axes[2].set_yscale("log")
+    axes[0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_energy_map(dnnm, static, path, label: str = "default") -> None:
+    """Energy dissipated per cycle by each pair at the amplitude of maximum damping."""
+    ok = np.isin(dnnm.status.values, USABLE)
+    i = int(np.nanargmax(np.where(ok, dnnm.zeta.values, np.nan)))
+    s, z = _surface_coords(static)
+    e = dnnm.energy_dissipated.values[i]
+    fig, ax = plt.subplots(figsize=(7, 2.6))
+    sc = ax.scatter(s, z, c=1e6 * e, cmap="inferno", s=60, marker="s")
+    fig.colorbar(sc, ax=ax, label=r"$E_d$ ($\mu$J per cycle)")
+    ax.set_xlabel("circumferential position (mm)")
+    ax.set_ylabel("z (mm)")
+    ax.set_title(f"{label}: |q_res,z| = {1e3 * dnnm.q_res_z.values[i]:.3f} mm, "
+                 f"zeta = {100 * dnnm.zeta.values[i]:.3f} % (maximum)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

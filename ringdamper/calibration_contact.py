@@ -348,6 +348,7 @@ def main(argv=None) -> None:
     p.add_argument("--kn", type=float)
     p.add_argument("--ratio", type=float)
     p.add_argument("--harmonics", default="1,3,5")
+    p.add_argument("--tag", default="", help="suffix of the output names")
     a = p.parse_args(argv)
     config = load_config(a.config)
     target_hz = yaml.safe_load(open(a.resonance))["frequency_hz"]
@@ -364,8 +365,9 @@ def main(argv=None) -> None:
         results = []
         for H in (int(h) for h in a.harmonics.split(",")):
             results += run_many(config, a.reduced, target_hz, [c], H, 1)
-    write_table([r for r, _ in results], table_dir / f"{a.stage}.csv")
-    save_curves(results, curve_dir / f"{a.stage}.npz")
+    name = a.stage + (f"_{a.tag}" if a.tag else "")
+    write_table([r for r, _ in results], table_dir / f"{name}.csv")
+    save_curves(results, curve_dir / f"{name}.npz")
     for r, _ in sorted(results, key=lambda rc: rc[0]["objective"])[:10]:
         print({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in r.items()})
     print(f"{len(results)} trials, {time.perf_counter() - t0:.0f} s")
@@ -373,3 +375,32 @@ def main(argv=None) -> None:
 
 if __name__ == "__main__":
     main()
+
+
+def plot_backbones(curves: list[tuple[str, dict]], path, q_max: float = 0.9e-3) -> None:
+    """Fig. 8-like figure: ω0, ζ, γ against |q_res,z| for labelled curves (first one bold), with
+    the paper's §2.6 point (ζ_max 0.15 % at 0.164 mm, ω0 2.187) marked."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 3, figsize=(11, 3.4), dpi=90)
+    for k, (label, c) in enumerate(curves):
+        ok = np.isin(c["status"], (0, 3)) & np.isfinite(c["q"]) & (c["q"] <= q_max)
+        q = c["q"][ok] * 1e3
+        style = dict(lw=2.2, color="k") if k == 0 else dict(lw=1.0)
+        axes[0].plot(q, c["omega0"][ok], label=label, **style)
+        axes[1].plot(q, 100 * c["zeta"][ok], **style)
+        axes[2].plot(q, c["gamma"][ok], **style)
+    axes[0].plot([0.164], [2.187], "r*", ms=10, label="paper §2.6")
+    axes[1].plot([0.164], [0.15], "r*", ms=10)
+    for ax, yl in zip(axes, (r"$\omega_0$ (normalised)", r"$\zeta$ (%)", r"$\gamma$ (N)")):
+        ax.set_xlabel(r"$|q_{res,z}|$ (mm)")
+        ax.set_ylabel(yl)
+        ax.grid(alpha=0.3)
+    axes[2].set_yscale("log")
+    axes[0].legend(fontsize=6.5, loc="lower left")
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)

@@ -13,13 +13,15 @@ grid. Each backbone is summarised by :func:`backbone_metrics` and scored by :fun
 
     J = w_ζ ln²(ζ_max / 0.15 %) + w_q ln²(q* / 0.164 mm) + w_Δ ln²(Δ* / 0.364 %) + P_shape,
 
-with ζ_max and q* = |q_res,z| at ζ_max refined by a parabola through the discrete peak in
-(ln q, ζ), Δ* = 1 − ω(q*)/ω_stuck the relative frequency drop at q*, weights 1, 1, 1 (a factor e
+all taken on the window |q_res,z| ≤ :data:`Q_MAX` = 0.45 mm (the paper's largest default-ring
+amplitude), with ζ_max and q* = |q_res,z| at ζ_max refined by a parabola through the discrete peak
+in (ln q, ζ), Δ* = 1 − ω(q*)/ω_stuck the relative frequency drop at q*, weights 1, 1, 1 (a factor e
 off on any one quantity costs 1), and P_shape = 10 per violated shape rule (:data:`SHAPE_RULES`):
 the frequency must not rise above the stuck frequency by more than 0.05 %, the damping peak must be
-inside the α grid (not at its last point), and at least 80 % of the grid points must be usable
-(status 0 or 3). The study (:func:`main`): a coarse grid over (μ, kn, kt/kn) at H = 1, a refined
-grid around the best candidates, then the chosen set at H = 3 and H = 5 (harmonic truncation).
+inside the window (not at its last point), and at least 80 % of the grid points must be usable
+(status 0 or 3). The study (:func:`main`, docs/calibration.md): a coarse grid over (μ, kn, kt/kn) at
+H = 1, a refined grid around the best coarse row, then the best sets at H = 1, 3, 5 (harmonic
+truncation). Result in ``config.yaml``: μ = 0.7, kn/area = 7e10 N/m³, kt/area = 5.6e10 N/m³.
 """
 
 from __future__ import annotations
@@ -279,7 +281,7 @@ def contact_states(backbone, contacts) -> dict:
 
     model = backbone.model
     n = backbone.alpha.size
-    out = {"n_slip": np.full(n, -1), "n_open": np.full(n, -1), "n_fully_open": np.full(n, -1)}
+    out = {k: np.full(n, -1) for k in ("n_slip", "n_slip_t1", "n_slip_t2", "n_open", "n_fully_open")}
     for i in range(n):
         if not np.isfinite(backbone.omega[i]):
             continue
@@ -287,9 +289,11 @@ def contact_states(backbone, contacts) -> dict:
         aft = contact_aft(contacts, model.fourier, d, jacobian=False)
         N, T = aft.normal, aft.tangential                      # (np, Nt), (np, 2, Nt)
         limit = contacts.mu[:, None] * N
-        slip = np.any((np.abs(T) >= limit[:, None, :] * (1 - 1e-9)) & (N[:, None, :] > 0), axis=(1, 2))
+        slip_dir = np.any((np.abs(T) >= limit[:, None, :] * (1 - 1e-9)) & (N[:, None, :] > 0), axis=2)
+        slip = np.any(slip_dir, axis=1)
         opened = np.any(N <= 0, axis=1)
         out["n_slip"][i] = int(slip.sum())
+        out["n_slip_t1"][i], out["n_slip_t2"][i] = (int(v) for v in slip_dir.sum(axis=0))
         out["n_open"][i] = int(opened.sum())
         out["n_fully_open"][i] = int(np.all(N <= 0, axis=1).sum())
     return out
@@ -326,10 +330,12 @@ def save_curves(results, path) -> None:
 
 
 def main(argv=None) -> None:
-    """The study: ``python -m ringdamper.calibration_contact coarse|refine|harmonics [...]``.
+    """The study: ``python -m ringdamper.calibration_contact coarse|refine|harmonics|figures``.
 
-    coarse: :data:`COARSE_GRID` at H = 1; refine: :data:`REFINE_GRID` at H = 1; harmonics: the ``--mu --kn --ratio`` set at H = 1, 3, 5.
-    Rows go to ``docs/calibration/<stage>.csv``, curves to ``results/calibration/<stage>.npz``.
+    coarse: :data:`COARSE_GRID` at H = 1; refine: :data:`REFINE_GRID` at H = 1; harmonics: the
+    ``--mu --kn --ratio`` set at ``--harmonics`` (default H = 1, 3, 5), outputs suffixed ``--tag``;
+    figures: :func:`figures`. Rows go to ``docs/calibration/<stage>.csv``, curves to
+    ``results/calibration/<stage>.npz`` (git-ignored). Run from the repository root.
     """
     import argparse
     from pathlib import Path
@@ -339,7 +345,7 @@ def main(argv=None) -> None:
     from .config import load_config
 
     p = argparse.ArgumentParser(description=main.__doc__)
-    p.add_argument("stage", choices=("coarse", "refine", "harmonics"))
+    p.add_argument("stage", choices=("coarse", "refine", "harmonics", "figures"))
     p.add_argument("--config", default="config.yaml")
     p.add_argument("--reduced", default="/work/main/results/geometry/t013/reduced.nc")
     p.add_argument("--resonance", default="/work/main/results/modal/resonance.yaml")
@@ -350,6 +356,9 @@ def main(argv=None) -> None:
     p.add_argument("--harmonics", default="1,3,5")
     p.add_argument("--tag", default="", help="suffix of the output names")
     a = p.parse_args(argv)
+    if a.stage == "figures":
+        figures()
+        return
     config = load_config(a.config)
     target_hz = yaml.safe_load(open(a.resonance))["frequency_hz"]
     table_dir, curve_dir = Path("docs/calibration"), Path("results/calibration")
@@ -373,11 +382,7 @@ def main(argv=None) -> None:
     print(f"{len(results)} trials, {time.perf_counter() - t0:.0f} s")
 
 
-if __name__ == "__main__":
-    main()
-
-
-def plot_backbones(curves: list[tuple[str, dict]], path, q_max: float = 0.9e-3) -> None:
+def plot_backbones(curves: list[tuple[str, dict]], path, q_max: float = 1.0e-3) -> None:
     """Fig. 8-like figure: ω0, ζ, γ against |q_res,z| for labelled curves (first one bold), with
     the paper's §2.6 point (ζ_max 0.15 % at 0.164 mm, ω0 2.187) marked."""
     import matplotlib
@@ -385,7 +390,7 @@ def plot_backbones(curves: list[tuple[str, dict]], path, q_max: float = 0.9e-3) 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 3, figsize=(11, 3.4), dpi=90)
+    fig, axes = plt.subplots(1, 3, figsize=(11, 4.0), dpi=90)
     for k, (label, c) in enumerate(curves):
         ok = np.isin(c["status"], (0, 3)) & np.isfinite(c["q"]) & (c["q"] <= q_max)
         q = c["q"][ok] * 1e3
@@ -400,7 +405,44 @@ def plot_backbones(curves: list[tuple[str, dict]], path, q_max: float = 0.9e-3) 
         ax.set_ylabel(yl)
         ax.grid(alpha=0.3)
     axes[2].set_yscale("log")
-    axes[0].legend(fontsize=6.5, loc="lower left")
-    fig.tight_layout()
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=7, frameon=False)
+    fig.tight_layout(rect=(0, 0.12, 1, 1))
     fig.savefig(path, dpi=90)
     plt.close(fig)
+
+
+def curve_of(npz_path, mu: float, kn: float, ratio: float, H: int = 1) -> dict:
+    """One backbone from a stage's .npz (see :func:`save_curves`)."""
+    d = np.load(npz_path)
+    ok = (np.isclose(d["friction_coefficient"], mu) & np.isclose(d["normal_stiffness_per_area"], kn)
+          & np.isclose(d["tangential_stiffness_per_area"], ratio * kn) & (d["H"] == H))
+    i = int(np.flatnonzero(ok)[0])
+    return {k: d[k][i] for k in ("alpha", "q", "omega0", "zeta", "gamma", "status")}
+
+
+def figures(out_dir="docs/figures", curve_dir="results/calibration") -> None:
+    """The study's figures: the chosen default backbone at H = 1, 3, 5 with H = 1 neighbours."""
+    from pathlib import Path
+
+    out, cd = Path(out_dir), Path(curve_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    chosen = (0.7, 7e10, 0.8)
+    curves = [("chosen: mu 0.7, kn 7e10, kt/kn 0.8, H=3", curve_of(cd / "harmonics_A.npz", *chosen, H=3)),
+              ("chosen, H=1", curve_of(cd / "harmonics_A.npz", *chosen, H=1)),
+              ("chosen, H=5", curve_of(cd / "harmonics_A.npz", *chosen, H=5)),
+              ("mu 0.6 (H=1)", curve_of(cd / "refine.npz", 0.6, 7e10, 0.8)),
+              ("mu 0.8 (H=1)", curve_of(cd / "refine.npz", 0.8, 7e10, 0.8)),
+              ("kn 1e11, kt/kn 0.5 (H=1)", curve_of(cd / "refine.npz", 0.7, 1e11, 0.5)),
+              ("kn 1.4e11, kt/kn 0.8 (H=1)", curve_of(cd / "refine.npz", 0.7, 1.4e11, 0.8))]
+    plot_backbones(curves, out / "calibration_default_backbone.png")
+    others = [("chosen, H=1", curves[1][1]),
+              ("old: mu 0.3, kn=kt 1e12", curve_of(cd / "coarse.npz", 0.3, 1e12, 1.0)),
+              ("mu 0.8, kn=kt 1e11", curve_of(cd / "coarse.npz", 0.8, 1e11, 1.0)),
+              ("mu 0.5, kn 3e10, kt/kn 0.5", curve_of(cd / "coarse.npz", 0.5, 3e10, 0.5)),
+              ("mu 0.2, kn 3e10, kt/kn 0.5", curve_of(cd / "coarse.npz", 0.2, 3e10, 0.5))]
+    plot_backbones(others, out / "calibration_coarse_examples.png")
+
+
+if __name__ == "__main__":
+    main()

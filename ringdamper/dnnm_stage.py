@@ -95,6 +95,10 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
                                       "energy dissipated per cycle by each contact pair"),
         "energy_damping": variable("amplitude", res.e_damp, "J",
                                    "energy per cycle of the structural and dNNM damping (E-EBM E_damp)"),
+        "rigid_body_imbalance": variable(
+            "amplitude", backbone.drift, "1",
+            "mean force on the ring's free rigid-body modes (rotation about Z, axial) held by the gauge, "
+            "relative to the contact forces: the ratcheting drive"),
         "status": variable("amplitude", res.status.astype(np.int8), "1",
                            "0 converged, 1 no convergence, 2 not reached, 3 converged with the ring's "
                            "mean rigid-body equilibrium unbalanced (ratcheting), 4 budget"),

@@ -128,8 +128,8 @@ def contact_aft(contacts: FrictionContacts, fourier: Fourier, d: np.ndarray,
     if jacobian:
         npairs, C, Cb = d.shape[0], fourier.C, basis.shape[1]
         jac = np.zeros((npairs, 3, C, 3, Cb))
-        jac[:, 0, :, 0, :] = np.einsum("ck,qk,kd->qcd", F, cp.kn[:, None] * closed, basis)
-        jac[:, 1:] = np.einsum("ck,qjkx->qjcx", F, dT).reshape(npairs, 2, C, 3, Cb)
+        jac[:, 0, :, 0, :] = (F * (cp.kn[:, None] * closed)[:, None, :]) @ basis
+        jac[:, 1:] = np.matmul(F, dT).reshape(npairs, 2, C, 3, Cb)
     return ContactAFT(lam=lam, jac=jac, normal=N, tangential=T)
 
 

@@ -267,7 +267,8 @@ class CondensedHBM:
             return np.zeros(0)
         rows = self.eta_slices[0].start + self.zero_modes     # η_Z unknowns and their equilibria
         PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]           # (p, nz)
-        S = np.einsum("qicj,qjz->qicz", kc[..., 0], PsiZ.reshape(self.npairs, 3, nz)).reshape(-1, nz)
+        S = np.matmul(kc[..., 0].reshape(self.npairs, -1, 3),
+                      PsiZ.reshape(self.npairs, 3, nz)).reshape(-1, nz)
         _, sv, Vt = np.linalg.svd(S, full_matrices=False)
         null = np.r_[sv, np.zeros(nz - sv.size)] <= self._null_tol
         if not np.any(null):

@@ -21,6 +21,8 @@ class Factorization:
     """LU of ``J`` after eliminating the trivial unknowns ``T`` (columns ``e_i`` in the first
     ``n_core`` rows): ``x_T = b_T − J[T, N] x_N`` and the Schur system on the other unknowns."""
 
+    cost = np.inf                                        # seconds to build (set by the caller)
+
     def __init__(self, J: np.ndarray, trivial: np.ndarray | None, n_core: int):
         n = J.shape[0]
         T = np.zeros(n, bool) if trivial is None else np.r_[trivial, np.zeros(n - trivial.size, bool)]
@@ -29,10 +31,10 @@ class Factorization:
         self.JTN = J[np.ix_(self.T, self.N)]
         self.JXT = J[np.ix_(extra, self.T)]
         self.extra_pos = np.searchsorted(self.N, extra)
-        A = J[np.ix_(self.N, self.N)]
+        A = J[np.ix_(self.N, self.N)] if self.T.size else J
         if self.T.size and extra.size:
             A[self.extra_pos] -= self.JXT @ self.JTN
-        self.lu = sla.lu_factor(A, check_finite=False)
+        self.lu = sla.lu_factor(A, check_finite=False, overwrite_a=A is not J)
 
     def solve(self, b: np.ndarray) -> np.ndarray:
         bN = b[self.N].copy()
@@ -93,11 +95,10 @@ def _newton(fun, z, scale, tol, max_iter, fac, theta_max, lambda_min):
 
 
 def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, lambda_min):
-    n_jac = n_newton = 0
+    n_jac = n_newton = it = 0
     fresh = fac is None
-    t_res = None
     ev = fun(z, fresh)
-    it = 0
+    dz = None                                    # correction of ``ev`` with ``fac``, if known
     while True:
         if fresh:
             t0 = time.perf_counter()
@@ -110,8 +111,10 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, lambda_min):
             fac = Factorization(J, trivial, n_core)
             fac.cost = time.perf_counter() - t0
             n_jac += 1
-        r, payload = ev[0], ev[4]
-        dz = fac.solve(-r)
+            dz = None
+        payload = ev[4]
+        if dz is None:
+            dz = _correction(fac, ev[0])
         sc = scale(z)
         step = np.max(np.abs(dz) / sc)
         if not np.isfinite(step):
@@ -128,30 +131,29 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, lambda_min):
             n_newton += 1
             lam = 1.0
             while True:
-                t0 = time.perf_counter()
                 trial = fun(z + lam * dz, False)
-                bar = _norm(fac, trial[0], sc)
-                t_res = time.perf_counter() - t0
+                corr = _correction(fac, trial[0])
+                bar = np.max(np.abs(corr) / sc)
                 if bar <= (1.0 - lam / 4) * step or lam <= lambda_min:
                     break
                 lam *= 0.5
-            z, ev, fresh = z + lam * dz, trial, lam < 1.0
+            z, ev, dz, fresh = z + lam * dz, trial, corr, lam < 1.0
             continue
         t0 = time.perf_counter()                     # chord step
         trial = fun(z + dz, False)
-        bar = _norm(fac, trial[0], sc)
+        corr = _correction(fac, trial[0])
         t_res = time.perf_counter() - t0
-        theta = bar / step
+        theta = np.max(np.abs(corr) / sc) / step
         if theta < theta_max:
-            needed = np.log(tol / bar) / np.log(theta) if theta > 0 else 0.0
-            if needed * t_res <= getattr(fac, "cost", np.inf):
-                z, ev = z + dz, trial
+            needed = np.log(tol / (theta * step)) / np.log(theta) if theta > 0 else 0.0
+            if needed * t_res <= fac.cost:
+                z, ev, dz = z + dz, trial, corr
                 continue
-        if bar < step:
+        if theta < 1:
             z, ev = z + dz, trial
         fresh = True
     return NewtonResult(z, False, it, payload, fac, f"no convergence in {it} iterations", n_jac)
 
 
-def _norm(fac, r, sc):
-    return np.max(np.abs(fac.solve(-r)) / sc) if np.all(np.isfinite(r)) else np.inf
+def _correction(fac, r):
+    return fac.solve(-r) if np.all(np.isfinite(r)) else np.full(r.size, np.inf)

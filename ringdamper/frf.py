@@ -70,8 +70,8 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
                     max_points: int = 1000) -> FRF:
     """Forced response at forcing amplitude ``gamma`` [N] from ``omega_start`` to ``omega_end``.
 
-    ``steps`` controls the arc length measured on unknowns scaled by their running maxima and ω
-    by ``|omega_end − omega_start|`` (default initial 0.02, min 1e-6, max 0.1). ``pole_band``
+    ``steps`` controls the arc length measured on unknowns scaled by their running maxima (times
+    √n) and ω by ``|omega_end − omega_start|`` (default initial 0.02, min 1e-6, max 0.1). ``pole_band``
     keeps modes with ``ω_r ∈ h·[ω_lo(1−pole_band), ω_hi(1+pole_band)]`` explicit.
     """
     t0 = time.perf_counter()
@@ -94,8 +94,13 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
     span = abs(omega_end - omega_start)
     sign = np.sign(omega_end - omega_start)
 
+    root_n = np.sqrt(model.n_core)
+
     def rescale(z, scale):
-        new = np.maximum(scale, np.r_[model.core_scale(z[:-1]), span])
+        """Running maxima of the unknowns, the response part weighted by ``1/√n`` so that the arc
+        length measures the RMS relative change of the response and the relative change of ω
+        alike (otherwise hundreds of contact unknowns would dominate the step)."""
+        new = np.maximum(scale, np.r_[root_n * model.core_scale(z[:-1]), span])
         model.update_gauge(z[:-1])
         return new
 

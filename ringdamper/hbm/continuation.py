@@ -2,8 +2,8 @@
 (excitation frequency for the forced response), after Allgower & Georg (2003).
 
 Common rules: tangent predictor, Newton corrector reusing the last factorisation while it
-contracts (:func:`ringdamper.hbm.newton.newton`), step grown ×1.5 when the corrector cost at most
-3 Jacobian evaluations + factorisations and halved above 6, halved on failure, and a
+contracts (:func:`ringdamper.hbm.newton.newton`), step grown ×1.5 when the corrector's effort
+(Jacobians + chord iterations / 12) is at most 1.5 and halved above 4, halved on failure, and a
 corrector that moves farther than its own predictor step (or than ``jump_floor`` in the scaled
 norm) is rejected as a branch jump. Failures never raise: they end the run with a status.
 """
@@ -36,13 +36,13 @@ class StepControl:
     minimum: float
     maximum: float
     grow: float = 1.5
-    easy: float = 3.0        # corrector effort (in Jacobian factorisations) below which ds grows
-    hard: float = 6.0        # effort above which ds shrinks
+    easy: float = 1.5        # corrector effort (:attr:`NewtonResult.effort`) below which ds grows
+    hard: float = 4.0        # effort above which ds shrinks
     jump_floor: float = 0.05
 
     def adapt(self, ds: float, res) -> float:
-        """New step from the corrector's effort (wall time in units of one Jacobian
-        factorisation, :attr:`NewtonResult.effort`): cheap chord iterations count little."""
+        """New step from the corrector's effort (Jacobians + iterations / chord budget, see
+        :func:`ringdamper.hbm.newton.newton`): cheap chord iterations count little."""
         if res.effort <= self.easy:
             ds *= self.grow
         elif res.effort >= self.hard:

@@ -89,7 +89,7 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
     if not res.converged:
         return _frf(gamma, zeta_s, [], [], [], Status.NO_CONVERGENCE,
                     f"start point: {res.reason}", problem, tol, max_iter, t0)
-    model.update_gauge(res.z)
+    model.accept(res.z, res.payload)
     z0 = np.r_[res.z, omega_start]
     span = abs(omega_end - omega_start)
     sign = np.sign(omega_end - omega_start)
@@ -100,15 +100,14 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
         """Running maxima of the unknowns, the response part weighted by ``1/√n`` so that the arc
         length measures the RMS relative change of the response and the relative change of ω
         alike (otherwise hundreds of contact unknowns would dominate the step)."""
-        new = np.maximum(scale, np.r_[root_n * model.core_scale(z[:-1]), span])
-        model.update_gauge(z[:-1])
-        return new
+        return np.maximum(scale, np.r_[root_n * model.core_scale(z[:-1]), span])
 
     direction = np.zeros(z0.size)
     direction[-1] = sign
     run = arclength(problem.fun, z0, direction, rescale(z0, np.zeros(z0.size)), steps, tol,
                     max_iter, stop=lambda z: sign * (z[-1] - omega_end) >= 0,
-                    max_points=max_points, rescale=rescale)
+                    max_points=max_points, rescale=rescale,
+                    accept=lambda z, ev: model.accept(z[:-1], ev))
     return _frf(gamma, zeta_s, run.points, run.tangents, run.scales, run.status, run.reason,
                 problem, tol, max_iter, t0)
 
@@ -140,6 +139,7 @@ def resonance_peak(frf: FRF, measure: str = "peak", xtol: float = 1e-12) -> Peak
     if i == 0 or i == len(frf.points) - 1:
         return best
     model, problem = frf.problem.model, frf.problem
+    model.accept(frf.points[i].z[:-1], frf.points[i].payload)      # history of the best point
     scale, t = frf.scales[i], frf.tangents[i]
     zi = frf.points[i].z
     plane = t / scale

@@ -17,7 +17,9 @@ displacements ``d`` (slot-major, ``(C, p)``), then ``η_{h,S}`` (harmonic 0 real
 
 with ``Λ_h`` the contact forces from the AFT (:mod:`ringdamper.contact.friction`) minus the static
 contact force ``(N0, 0, 0)``: displacements are measured from the static equilibrium, where
-that force is balanced by the static loads.
+that force is balanced by the static loads. The slider memory before the period (``memory``) is
+the static state at the start of a continuation and then the periodic state of the previous
+accepted solution (:meth:`CondensedHBM.accept`).
 
 Jacobian: ``∂r/∂y = I + A_h K_c`` with ``A_h = [Ψ_C diag(1/z_C) Ψ_Cᴴ ; Ψ_Sᴴ]`` per harmonic and
 ``K_c`` the AFT Jacobian (block-diagonal over pairs), plus the explicit-mode blocks.
@@ -48,7 +50,8 @@ class CoreEval:
     """One evaluation: residual ``r``, Jacobian ``J`` (core × core) and its columns for ω and ξ,
     the trivial unknowns (d slots of pairs with zero contact Jacobian: their columns are unit
     vectors), contact displacement/force slots ``d``, ``lam`` (C × p), modal coordinates ``eta[h]``
-    of every mode, the AFT result and the gauge drift (equilibrium dropped for the gauge)."""
+    of every mode, the AFT result, the gauge drift (equilibrium dropped for the gauge) and the
+    slider ``memory`` the evaluation used."""
 
     r: np.ndarray
     J: np.ndarray | None
@@ -60,6 +63,7 @@ class CoreEval:
     eta: list
     aft: ContactAFT
     drift: np.ndarray
+    memory: np.ndarray
 
 
 class CondensedHBM:
@@ -107,6 +111,7 @@ class CondensedHBM:
             if np.any(np.linalg.norm(PsiZ, axis=0) == 0):
                 raise ValueError("a zero-frequency mode of harmonic 0 moves no contact: mechanism")
         self.eta_ref = np.zeros(self.zero_modes.size)
+        self.memory = np.zeros((self.npairs, 2))            # slider state before the period
         kscale = max(np.max(contacts.kn), np.max(contacts.kt))
         self._null_tol = gauge_tol * kscale * (np.linalg.norm(PsiZ, 2) if self.zero_modes.size
                                                else 0.0)
@@ -139,11 +144,14 @@ class CondensedHBM:
         s = self.S[h].size
         return self.eta_slices[h].start + k + (s if imag else 0)
 
-    def update_gauge(self, y: np.ndarray) -> None:
-        """Set the gauge reference to the zero-mode positions of ``y`` (called on every accepted
-        continuation point, so an undetermined rigid-body position keeps its last value)."""
+    def accept(self, y: np.ndarray, ev: "CoreEval") -> None:
+        """History update on every accepted continuation point: the gauge reference takes the
+        zero-mode positions of ``y`` (an undetermined rigid-body position keeps its last value)
+        and the slider memory the periodic slider state of ``ev`` (a pair that re-sticks keeps
+        its slider where it stopped)."""
         if self.zero_modes.size:
             self.eta_ref = y[self.eta_slices[0].start + self.zero_modes].copy()
+        self.memory = ev.aft.memory.copy()
 
     def core_scale(self, y: np.ndarray) -> np.ndarray:
         """Scale of every core unknown for convergence tests: contact slots by the largest of
@@ -163,7 +171,8 @@ class CondensedHBM:
         H, C, p, npairs = self.H, self.C, self.p, self.npairs
         d = y[:self.n_d].reshape(C, p)
         aft = contact_aft(self.contacts, self.fourier, d.reshape(C, npairs, 3).transpose(1, 2, 0),
-                          jacobian=True if jacobian else ("dc" if self.zero_modes.size else False))
+                          jacobian=True if jacobian else ("dc" if self.zero_modes.size else False),
+                          memory=self.memory)
         lam = aft.lam.transpose(2, 0, 1).reshape(C, p).copy()
         lam[0] -= self.static
         D, Lam = to_complex(d, H), to_complex(lam, H)
@@ -226,7 +235,7 @@ class CondensedHBM:
             trivial[:self.n_d] = np.tile(np.repeat(~active, 3), C)
         drift = self._gauge(r, J, dr_dw, dr_dx, y, aft.jac)
         return CoreEval(r=r, J=J, dr_domega=dr_dw, dr_dxi=dr_dx, trivial=trivial, d=d, lam=lam,
-                        eta=etas, aft=aft, drift=drift)
+                        eta=etas, aft=aft, drift=drift, memory=self.memory)
 
     def modal_norm2(self, ev: CoreEval, omega: float, xi: float, h: int = 1):
         """``Σ_r |η_{h,r}|² = Q_hᴴ M_h Q_h`` and its gradient w.r.t. ``y``, ω and ξ."""

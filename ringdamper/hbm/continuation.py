@@ -154,7 +154,7 @@ class ArclengthResult:
 def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.ndarray,
               steps: StepControl, tol: float, max_iter: int, stop: Callable[[np.ndarray], bool],
               max_points: int, max_angle: float = np.pi / 4, corner: float = 100.0,
-              rescale: Callable | None = None) -> ArclengthResult:
+              rescale: Callable | None = None, accept: Callable | None = None) -> ArclengthResult:
     """Pseudo-arc-length continuation of ``r(z) = 0`` (one fewer equation than unknowns).
 
     ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)``, ``J`` of shape ``(n−1, n)``; ``z0`` a
@@ -165,10 +165,13 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
     already been refined below ``corner × steps.minimum``: the turn is then a corner of the
     non-smooth branch (e.g. the stick–slip kink of a Jenkins element). Stops with status 0 when
     ``stop(z)`` is true. ``rescale(z, scale) -> scale`` may update the scaling after every
-    accepted point (the tangent is carried over in unscaled form). ``scales`` in the result holds
+    accepted point (the tangent is carried over in unscaled form); ``accept(z, payload)`` is
+    called on the start and every accepted point (history updates). ``scales`` in the result holds
     the scaling in force at every point.
     """
     r0, J0, trivial0, n_core0, payload0 = fun(z0, True)
+    if accept is not None:
+        accept(z0, payload0)
     t = _tangent(J0, trivial0, n_core0, direction / scale, scale)
     pts, tans, scales = [ContinuationPoint(0.0, z0, payload0, 0)], [t], [scale]
     z, s, ds = z0, 0.0, steps.initial
@@ -193,6 +196,8 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
             pts.append(ContinuationPoint(s, z, res.payload, res.iterations))
             tans.append(t)
             scales.append(scale)
+            if accept is not None:
+                accept(z, res.payload)
             if stop(z):
                 return ArclengthResult(pts, tans, scales, Status.CONVERGED, "")
             if rescale is not None:

@@ -22,7 +22,7 @@ import numpy as np
 from ringdamper.contact.friction import FrictionContacts
 from ringdamper.eebm import eebm
 from ringdamper.frf import forced_response, resonance_peak
-from ringdamper.hbm.epmc import _linear_limit, epmc
+from ringdamper.hbm.epmc import linear_limit, epmc
 from ringdamper.hbm.structure import HarmonicData, Structure
 
 
@@ -93,7 +93,7 @@ def run(H_values=(1, 3, 5), n_alpha: int = 30, frf_H: int = 1, profile: bool = F
     out = {}
     st, c = synthetic_system(H=max(max(H_values), frf_H))
     k, _, phi = target_mode(st, c)
-    a_slip = _linear_limit(st, c, phi)
+    a_slip = linear_limit(st, c, phi)
     alpha = a_slip * np.logspace(-1, 2, n_alpha)
     t0 = time.perf_counter()
     for h in range(max(max(H_values), frf_H) + 1):

@@ -140,7 +140,7 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     if gauge_reference is not None:
         model.eta_ref = np.asarray(gauge_reference, float).copy()
     if alpha_start is None:
-        alpha_start = min(alpha[0], 0.5 * _linear_limit(structure, contacts, phi))
+        alpha_start = min(alpha[0], 0.5 * linear_limit(structure, contacts, phi))
     z0, phase_index = _initial_guess(model, phi, omega0, alpha_start)
     problem = EPMCProblem(model, phase_index, drift_tol)
     run = natural(problem.fun, problem.dfun_ds, z0, np.log(alpha), problem.scale, steps, tol,
@@ -154,7 +154,7 @@ def _stuck_mode(structure, contacts, mode, omega_target):
     return omegas[k], Phi[:, k]
 
 
-def _linear_limit(structure, contacts, phi):
+def linear_limit(structure, contacts, phi):
     """Smallest modal amplitude at which the linear stuck mode ``phi`` would make a preloaded
     pair slip (``kt |d_t| = μ N0``) or open (``kn |d_n| = N0``), or a gapped pair close."""
     d = np.abs(structure.harmonics[1].B @ phi).reshape(-1, 3)

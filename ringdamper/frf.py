@@ -30,14 +30,17 @@ from ringdamper.hbm.structure import Structure
 @dataclass
 class FRF:
     """Forced-response branch: per point ``omega`` [rad/s], ``q_h1`` (first-harmonic magnitude
-    of the response DoF) and ``q_peak`` (peak of its time signal) [m]; ``status`` 0 when the
-    branch reached ``omega_end``; ``points``/``tangents``/``scales`` of the continuation."""
+    of the response DoF), ``q_peak`` (peak of its time signal) [m] and ``drift`` (relative mean
+    force on a gauged free body, see :mod:`ringdamper.hbm.condensed`); ``status`` 0 when the
+    branch reached ``omega_end`` (DRIFT if a point's drift exceeds ``drift_tol``);
+    ``points``/``tangents``/``scales`` of the continuation."""
 
     gamma: float
     zeta_s: float
     omega: np.ndarray
     q_h1: np.ndarray
     q_peak: np.ndarray
+    drift: np.ndarray
     status: int
     reason: str
     points: list = field(repr=False)
@@ -67,7 +70,7 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
                     omega_start: float, omega_end: float, *, H: int = 1, nt: int | None = None,
                     zeta_s: float = 0.0, pole_band: float = 0.05, tol: float = 1e-8,
                     max_iter: int = 20, steps: StepControl | None = None,
-                    max_points: int = 1000) -> FRF:
+                    max_points: int = 1000, drift_tol: float = 1e-8) -> FRF:
     """Forced response at forcing amplitude ``gamma`` [N] from ``omega_start`` to ``omega_end``.
 
     ``steps`` controls the arc length measured on unknowns scaled by their running maxima (times
@@ -88,7 +91,7 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
     res = newton(problem.at_frequency(omega_start), y0, model.core_scale, tol, max_iter)
     if not res.converged:
         return _frf(gamma, zeta_s, [], [], [], Status.NO_CONVERGENCE,
-                    f"start point: {res.reason}", problem, tol, max_iter, t0)
+                    f"start point: {res.reason}", problem, tol, max_iter, drift_tol, t0)
     model.accept(res.z, res.payload)
     z0 = np.r_[res.z, omega_start]
     span = abs(omega_end - omega_start)
@@ -109,15 +112,22 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
                     max_points=max_points, rescale=rescale,
                     accept=lambda z, ev: model.accept(z[:-1], ev))
     return _frf(gamma, zeta_s, run.points, run.tangents, run.scales, run.status, run.reason,
-                problem, tol, max_iter, t0)
+                problem, tol, max_iter, drift_tol, t0)
 
 
-def _frf(gamma, zeta_s, points, tangents, scales, status, reason, problem, tol, max_iter, t0):
+def _frf(gamma, zeta_s, points, tangents, scales, status, reason, problem, tol, max_iter,
+         drift_tol, t0):
+    model = problem.model
     omega = np.array([p.z[-1] for p in points])
-    h1, peak = np.array([_measures(problem.model, p.payload) for p in points]).reshape(-1, 2).T
-    return FRF(gamma=gamma, zeta_s=zeta_s, omega=omega, q_h1=h1, q_peak=peak, status=int(status),
-               reason=reason, points=points, tangents=tangents, scales=scales, problem=problem,
-               tol=tol, max_iter=max_iter, wall_time=time.perf_counter() - t0)
+    h1, peak = np.array([_measures(model, p.payload) for p in points]).reshape(-1, 2).T
+    drift = np.array([model.relative_drift(p.payload) for p in points])
+    if status == Status.CONVERGED and np.any(drift > drift_tol):
+        status = Status.DRIFT
+        reason = (f"mean force on a free body up to {drift.max():.2e} (relative): no periodic "
+                  "response there, the body ratchets")
+    return FRF(gamma=gamma, zeta_s=zeta_s, omega=omega, q_h1=h1, q_peak=peak, drift=drift,
+               status=int(status), reason=reason, points=points, tangents=tangents, scales=scales,
+               problem=problem, tol=tol, max_iter=max_iter, wall_time=time.perf_counter() - t0)
 
 
 def _measures(model: CondensedHBM, ev) -> tuple[float, float]:

@@ -105,6 +105,9 @@ class CondensedHBM:
             self.eta_slices.append(slice(off, off + size))
             off += size
         self.n_core = off
+        self.PsiH = [m.Psi.conj().T.copy() for m in self.modal]                 # Ψ_hᴴ
+        self.PsiC = [m.Psi[:, Cs] for m, Cs in zip(self.modal, self.Cset)]     # condensed
+        self.PsiS = [m.Psi[:, S] for m, S in zip(self.modal, self.S)]          # explicit
         self.zero_modes = np.flatnonzero(self.modal[0].zero[self.S[0]])    # positions within S_0
         if self.zero_modes.size:
             PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]
@@ -153,6 +156,14 @@ class CondensedHBM:
             self.eta_ref = y[self.eta_slices[0].start + self.zero_modes].copy()
         self.memory = ev.aft.memory.copy()
 
+    def relative_drift(self, ev: "CoreEval") -> float:
+        """Largest dropped rigid-body equilibrium of ``ev`` relative to ``max|Ψ_0|·max|λ|``
+        (0 when no rigid-body direction is gauged)."""
+        if not ev.drift.size:
+            return 0.0
+        scale = np.max(np.abs(self.modal[0].Psi)) * max(np.max(np.abs(ev.lam)), 1e-300)
+        return float(np.max(np.abs(ev.drift)) / scale)
+
     def core_scale(self, y: np.ndarray) -> np.ndarray:
         """Scale of every core unknown for convergence tests: contact slots by the largest of
         them, explicit modal coordinates by the largest of them or the modal equivalent of the
@@ -188,7 +199,7 @@ class CondensedHBM:
         for h in range(H + 1):
             m, S, Cs, sl = self.modal[h], self.S[h], self.Cset[h], self.eta_slices[h]
             z, dz_dw, dz_dx = self._modal_impedance(h, omega, xi)
-            load = (self.gamma * m.f if self.forced else 0.0) - m.Psi.conj().T @ Lam[h]
+            load = (self.gamma * m.f if self.forced else 0.0) - self.PsiH[h] @ Lam[h]
             eta_S = self.eta_explicit(y, h)
             eta = np.empty(m.w2.size, complex)
             eta[Cs] = load[Cs] / z[Cs]
@@ -203,7 +214,7 @@ class CondensedHBM:
                 r[rows], r[sl] = real_vector(rd), real_vector(re)
             if not jacobian:
                 continue
-            PsiC, PsiS = m.Psi[:, Cs], m.Psi[:, S]
+            PsiC, PsiS = self.PsiC[h], self.PsiS[h]
             rhoC = 1.0 / z[Cs]
             G = (PsiC * rhoC) @ PsiC.conj().T
             A = np.vstack([G, PsiS.conj().T])                      # response to δΛ_h
@@ -239,12 +250,12 @@ class CondensedHBM:
 
     def modal_norm2(self, ev: CoreEval, omega: float, xi: float, h: int = 1):
         """``Σ_r |η_{h,r}|² = Q_hᴴ M_h Q_h`` and its gradient w.r.t. ``y``, ω and ξ."""
-        m, S, Cs = self.modal[h], self.S[h], self.Cset[h]
+        S, Cs = self.S[h], self.Cset[h]
         eta = ev.eta[h]
         z, dz_dw, dz_dx = self._modal_impedance(h, omega, xi)
         etaC = eta[Cs]
         grad = np.zeros(self.n_core)
-        u = m.Psi[:, Cs] @ (etaC * np.conj(1.0 / z[Cs]))
+        u = self.PsiC[h] @ (etaC * np.conj(1.0 / z[Cs]))
         row = -2.0 * (u.real[None] if h == 0 else real_vector(u)[None])
         kc = ev.aft.jac
         active = np.any(kc.reshape(self.npairs, -1) != 0, axis=1)
@@ -282,7 +293,8 @@ class CondensedHBM:
         null = np.r_[sv, np.zeros(nz - sv.size)] <= self._null_tol
         if not np.any(null):
             return np.zeros(0)
-        V = np.eye(nz) if np.all(null) else Vt.T * np.sign(Vt[np.arange(nz), np.argmax(np.abs(Vt), 1)])
+        sign = np.sign(Vt[np.arange(nz), np.argmax(np.abs(Vt), 1)])     # deterministic basis
+        V = np.eye(nz) if np.all(null) else Vt.T * sign
         rot = V.T @ r[rows]
         drift = rot[null].copy()
         rot[null] = V[:, null].T @ (y[rows] - self.eta_ref)

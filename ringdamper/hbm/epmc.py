@@ -205,8 +205,7 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall) -> Bac
         d[i], lam[i], memory[i] = ev.d, ev.lam, ev.memory
         for h in range(model.H + 1):
             eta[h][i] = ev.eta[h]
-        scale = np.max(np.abs(model.modal[0].Psi)) * max(np.max(np.abs(ev.lam)), 1e-300)
-        drift[i] = np.max(np.abs(ev.drift)) / scale if ev.drift.size else 0.0
+        drift[i] = model.relative_drift(ev)
         if drift[i] > problem.drift_tol:
             status[i] = Status.DRIFT
             reason[i] = (f"mean force on a free body {drift[i]:.2e} (relative): no periodic "
@@ -214,5 +213,5 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall) -> Bac
     branch = np.array([(np.exp(p.s), p.z[-2], p.z[-1]) for p in run.branch]).reshape(-1, 3)
     return Backbone(alpha=alpha, omega=omega, xi=xi, zeta=xi / (2 * omega), status=status,
                     reason=reason, iterations=iters, d=d, lam=lam, eta=eta, memory=memory,
-                    drift=drift,
-                    branch=branch, model=model, phase_index=problem.phase_index, wall_time=wall)
+                    drift=drift, branch=branch, model=model, phase_index=problem.phase_index,
+                    wall_time=wall)

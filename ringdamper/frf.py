@@ -30,14 +30,17 @@ from ringdamper.hbm.structure import Structure
 @dataclass
 class FRF:
     """Forced-response branch: per point ``omega`` [rad/s], ``q_h1`` (first-harmonic magnitude
-    of the response DoF) and ``q_peak`` (peak of its time signal) [m]; ``status`` 0 when the
-    branch reached ``omega_end``; ``points``/``tangents``/``scales`` of the continuation."""
+    of the response DoF), ``q_peak`` (peak of its time signal) [m] and ``drift`` (relative mean
+    force on a gauged free body, see :mod:`ringdamper.hbm.condensed`); ``status`` 0 when the
+    branch reached ``omega_end`` (DRIFT if a point's drift exceeds ``drift_tol``);
+    ``points``/``tangents``/``scales`` of the continuation."""
 
     gamma: float
     zeta_s: float
     omega: np.ndarray
     q_h1: np.ndarray
     q_peak: np.ndarray
+    drift: np.ndarray
     status: int
     reason: str
     points: list = field(repr=False)
@@ -67,11 +70,11 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
                     omega_start: float, omega_end: float, *, H: int = 1, nt: int | None = None,
                     zeta_s: float = 0.0, pole_band: float = 0.05, tol: float = 1e-8,
                     max_iter: int = 20, steps: StepControl | None = None,
-                    max_points: int = 1000) -> FRF:
+                    max_points: int = 1000, drift_tol: float = 1e-8) -> FRF:
     """Forced response at forcing amplitude ``gamma`` [N] from ``omega_start`` to ``omega_end``.
 
-    ``steps`` controls the arc length measured on unknowns scaled by their running maxima and ω
-    by ``|omega_end − omega_start|`` (default initial 0.02, min 1e-6, max 0.1). ``pole_band``
+    ``steps`` controls the arc length measured on unknowns scaled by their running maxima (times
+    √n) and ω by ``|omega_end − omega_start|`` (default initial 0.02, min 1e-6, max 0.1). ``pole_band``
     keeps modes with ``ω_r ∈ h·[ω_lo(1−pole_band), ω_hi(1+pole_band)]`` explicit.
     """
     t0 = time.perf_counter()
@@ -88,32 +91,43 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
     res = newton(problem.at_frequency(omega_start), y0, model.core_scale, tol, max_iter)
     if not res.converged:
         return _frf(gamma, zeta_s, [], [], [], Status.NO_CONVERGENCE,
-                    f"start point: {res.reason}", problem, tol, max_iter, t0)
-    model.update_gauge(res.z)
+                    f"start point: {res.reason}", problem, tol, max_iter, drift_tol, t0)
+    model.accept(res.z, res.payload)
     z0 = np.r_[res.z, omega_start]
     span = abs(omega_end - omega_start)
     sign = np.sign(omega_end - omega_start)
 
+    root_n = np.sqrt(model.n_core)
+
     def rescale(z, scale):
-        new = np.maximum(scale, np.r_[model.core_scale(z[:-1]), span])
-        model.update_gauge(z[:-1])
-        return new
+        """Running maxima of the unknowns, the response part weighted by ``1/√n`` so that the arc
+        length measures the RMS relative change of the response and the relative change of ω
+        alike (otherwise hundreds of contact unknowns would dominate the step)."""
+        return np.maximum(scale, np.r_[root_n * model.core_scale(z[:-1]), span])
 
     direction = np.zeros(z0.size)
     direction[-1] = sign
     run = arclength(problem.fun, z0, direction, rescale(z0, np.zeros(z0.size)), steps, tol,
                     max_iter, stop=lambda z: sign * (z[-1] - omega_end) >= 0,
-                    max_points=max_points, rescale=rescale)
+                    max_points=max_points, rescale=rescale,
+                    accept=lambda z, ev: model.accept(z[:-1], ev))
     return _frf(gamma, zeta_s, run.points, run.tangents, run.scales, run.status, run.reason,
-                problem, tol, max_iter, t0)
+                problem, tol, max_iter, drift_tol, t0)
 
 
-def _frf(gamma, zeta_s, points, tangents, scales, status, reason, problem, tol, max_iter, t0):
+def _frf(gamma, zeta_s, points, tangents, scales, status, reason, problem, tol, max_iter,
+         drift_tol, t0):
+    model = problem.model
     omega = np.array([p.z[-1] for p in points])
-    h1, peak = np.array([_measures(problem.model, p.payload) for p in points]).reshape(-1, 2).T
-    return FRF(gamma=gamma, zeta_s=zeta_s, omega=omega, q_h1=h1, q_peak=peak, status=int(status),
-               reason=reason, points=points, tangents=tangents, scales=scales, problem=problem,
-               tol=tol, max_iter=max_iter, wall_time=time.perf_counter() - t0)
+    h1, peak = np.array([_measures(model, p.payload) for p in points]).reshape(-1, 2).T
+    drift = np.array([model.relative_drift(p.payload) for p in points])
+    if status == Status.CONVERGED and np.any(drift > drift_tol):
+        status = Status.DRIFT
+        reason = (f"mean force on a free body up to {drift.max():.2e} (relative): no periodic "
+                  "response there, the body ratchets")
+    return FRF(gamma=gamma, zeta_s=zeta_s, omega=omega, q_h1=h1, q_peak=peak, drift=drift,
+               status=int(status), reason=reason, points=points, tangents=tangents, scales=scales,
+               problem=problem, tol=tol, max_iter=max_iter, wall_time=time.perf_counter() - t0)
 
 
 def _measures(model: CondensedHBM, ev) -> tuple[float, float]:
@@ -135,6 +149,7 @@ def resonance_peak(frf: FRF, measure: str = "peak", xtol: float = 1e-12) -> Peak
     if i == 0 or i == len(frf.points) - 1:
         return best
     model, problem = frf.problem.model, frf.problem
+    model.accept(frf.points[i].z[:-1], frf.points[i].payload)      # history of the best point
     scale, t = frf.scales[i], frf.tangents[i]
     zi = frf.points[i].z
     plane = t / scale

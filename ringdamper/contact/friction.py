@@ -11,9 +11,11 @@ frame (n, t1, t2) of the relative displacement d = u_ring − u_blisk (d_n > 0 c
 * tangential, law ``"coulomb"`` (isotropic option): one 2-D slider, ``|T| ≤ μ N(t)`` as a circle.
 
 Time discretisation: the slider follows the *play operator* ``w_k = proj_{[d_k ± r_k]}(w_{k−1})``
-with ``r_k = μ N_k / kt``, exact at the samples for inputs monotone between samples. The memory at
-the static equilibrium is ``w = 0`` (zero tangential force there), so stuck contacts behave as the
-linear springs ``(kn, kt, kt)`` of the linearised stuck system.
+with ``r_k = μ N_k / kt``, exact at the samples for inputs monotone between samples. The slider
+memory before the period is an input: ``w = 0`` at the static equilibrium (zero tangential force
+there, so stuck contacts behave as the linear springs ``(kn, kt, kt)`` of the linearised stuck
+system); along a continuation it is the periodic state of the previous solution (a quasi-static
+history: a pair that re-sticks keeps the slider where it stopped).
 
 Periodic state ("march until periodic", DESIGN §2): for the Jenkins law the map "one period" is a
 clamp ``w ↦ clip(w, A, B)`` (a composition of clamps is a clamp), which is idempotent, so the state
@@ -90,27 +92,31 @@ class FrictionContacts:
 @dataclass
 class ContactAFT:
     """AFT result for all pairs: force coefficients ``lam`` ``(npairs, 3, C)``, their Jacobian
-    ``jac[q, i, c, j, c'] = ∂lam[q, i, c] / ∂d[q, j, c']`` (or None), and the time signals."""
+    ``jac[q, i, c, j, c'] = ∂lam[q, i, c] / ∂d[q, j, c']`` (or None), the time signals, and the
+    periodic slider state at the period start ``memory`` ``(npairs, 2)``."""
 
     lam: np.ndarray
     jac: np.ndarray | None
     normal: np.ndarray
     tangential: np.ndarray
+    memory: np.ndarray
 
 
 def contact_aft(contacts: FrictionContacts, fourier: Fourier, d: np.ndarray,
-                jacobian: bool | str = True, tol: float = 1e-13,
+                jacobian: bool | str = True, memory: np.ndarray | None = None, tol: float = 1e-13,
                 max_periods: int = 500) -> ContactAFT:
     """Periodic contact forces of relative displacements ``d`` ``(npairs, 3, C)`` (slots of
     :mod:`ringdamper.hbm.fourier`), with the analytical Jacobian if ``jacobian`` (``"dc"``: only
     its columns for the mean values, ``jac[..., :1]``, which the rigid-body gauge needs).
+    ``memory`` ``(npairs, 2)``: slider positions before the period (default 0, the static state).
 
     ``tol``/``max_periods`` control the periodicity check of the Coulomb march.
     """
     cp = contacts
     E, F = fourier.E, fourier.F
+    memory = np.zeros((d.shape[0], 2)) if memory is None else memory
     if jacobian == "dc" and cp.law == "coulomb":
-        full = contact_aft(contacts, fourier, d, True, tol, max_periods)
+        full = contact_aft(contacts, fourier, d, True, memory, tol, max_periods)
         full.jac = full.jac[..., :1]
         return full
     basis = E[:, :1] if jacobian == "dc" else E
@@ -120,17 +126,18 @@ def contact_aft(contacts: FrictionContacts, fourier: Fourier, d: np.ndarray,
     N = np.where(closed, N, 0.0)
     r = cp.mu[:, None] * N / cp.kt[:, None]                  # slip radius (np, Nt)
     if cp.law == "jenkins":
-        T, dT = _jenkins(cp, basis, dt[:, 1:], r, closed, bool(jacobian))
+        T, dT = _jenkins(cp, basis, dt[:, 1:], r, closed, bool(jacobian), memory)
     else:
-        T, dT = _coulomb(cp, E, dt[:, 1:], r, closed, jacobian, tol, max_periods)
+        T, dT = _coulomb(cp, E, dt[:, 1:], r, closed, jacobian, memory, tol, max_periods)
     lam = np.concatenate([fourier.analyse(N)[:, None], fourier.analyse(T)], axis=1)
     jac = None
     if jacobian:
         npairs, C, Cb = d.shape[0], fourier.C, basis.shape[1]
         jac = np.zeros((npairs, 3, C, 3, Cb))
-        jac[:, 0, :, 0, :] = np.einsum("ck,qk,kd->qcd", F, cp.kn[:, None] * closed, basis)
-        jac[:, 1:] = np.einsum("ck,qjkx->qjcx", F, dT).reshape(npairs, 2, C, 3, Cb)
-    return ContactAFT(lam=lam, jac=jac, normal=N, tangential=T)
+        jac[:, 0, :, 0, :] = (F * (cp.kn[:, None] * closed)[:, None, :]) @ basis
+        jac[:, 1:] = np.matmul(F, dT).reshape(npairs, 2, C, 3, Cb)
+    w_end = dt[:, 1:, -1] - T[:, :, -1] / cp.kt[:, None]          # slider at the period end
+    return ContactAFT(lam=lam, jac=jac, normal=N, tangential=T, memory=w_end)
 
 
 def play_operator(lo: np.ndarray, hi: np.ndarray, w0: np.ndarray | float = 0.0):
@@ -168,11 +175,11 @@ def _clip_with_source(x, sx, lo, hi, slo, shi):
             np.where(below, slo, np.where(above, shi, sx)))
 
 
-def _jenkins(cp, E, d, r, closed, jacobian):
+def _jenkins(cp, E, d, r, closed, jacobian, memory):
     """Two independent Jenkins elements: forces ``(np, 2, Nt)`` and ``∂T/∂c`` ``(np, 2, Nt, 3C)``
     for the coefficients of the basis ``E`` (Nt × C: all slots, or the mean only)."""
     kt = cp.kt[:, None, None]
-    w, src = play_operator(d - r[:, None], d + r[:, None], 0.0)
+    w, src = play_operator(d - r[:, None], d + r[:, None], memory)
     T = kt * (d - w)
     if not jacobian:
         return T, None
@@ -190,7 +197,7 @@ def _jenkins(cp, E, d, r, closed, jacobian):
     return T, dT.reshape(npairs, 2, nt, 3 * C)
 
 
-def _coulomb(cp, E, d, r, closed, jacobian, tol, max_periods):
+def _coulomb(cp, E, d, r, closed, jacobian, memory, tol, max_periods):
     """Isotropic Coulomb slider, marched period after period until the state at the period start
     repeats; derivatives are carried along in forward mode (:class:`_Dual`)."""
     npairs, _, nt = d.shape
@@ -207,7 +214,7 @@ def _coulomb(cp, E, d, r, closed, jacobian, tol, max_periods):
         return _Dual(d[:, 0, k], t1), _Dual(d[:, 1, k], t2), _Dual(r[:, k], tr)
 
     samples = [signal(k) for k in range(nt)]
-    w = (_Dual(np.zeros(npairs), zero), _Dual(np.zeros(npairs), zero))
+    w = (_Dual(memory[:, 0].astype(float), zero), _Dual(memory[:, 1].astype(float), zero))
     prev = samples[-1]
     scale = np.max(np.abs(d)) + np.max(r) + np.finfo(float).tiny
     W = np.empty((npairs, 2, nt))

@@ -17,7 +17,9 @@ displacements ``d`` (slot-major, ``(C, p)``), then ``η_{h,S}`` (harmonic 0 real
 
 with ``Λ_h`` the contact forces from the AFT (:mod:`ringdamper.contact.friction`) minus the static
 contact force ``(N0, 0, 0)``: displacements are measured from the static equilibrium, where
-that force is balanced by the static loads.
+that force is balanced by the static loads. The slider memory before the period (``memory``) is
+the static state at the start of a continuation and then the periodic state of the previous
+accepted solution (:meth:`CondensedHBM.accept`).
 
 Jacobian: ``∂r/∂y = I + A_h K_c`` with ``A_h = [Ψ_C diag(1/z_C) Ψ_Cᴴ ; Ψ_Sᴴ]`` per harmonic and
 ``K_c`` the AFT Jacobian (block-diagonal over pairs), plus the explicit-mode blocks.
@@ -48,7 +50,8 @@ class CoreEval:
     """One evaluation: residual ``r``, Jacobian ``J`` (core × core) and its columns for ω and ξ,
     the trivial unknowns (d slots of pairs with zero contact Jacobian: their columns are unit
     vectors), contact displacement/force slots ``d``, ``lam`` (C × p), modal coordinates ``eta[h]``
-    of every mode, the AFT result and the gauge drift (equilibrium dropped for the gauge)."""
+    of every mode, the AFT result, the gauge drift (equilibrium dropped for the gauge) and the
+    slider ``memory`` the evaluation used."""
 
     r: np.ndarray
     J: np.ndarray | None
@@ -60,6 +63,7 @@ class CoreEval:
     eta: list
     aft: ContactAFT
     drift: np.ndarray
+    memory: np.ndarray
 
 
 class CondensedHBM:
@@ -101,12 +105,16 @@ class CondensedHBM:
             self.eta_slices.append(slice(off, off + size))
             off += size
         self.n_core = off
+        self.PsiH = [m.Psi.conj().T.copy() for m in self.modal]                 # Ψ_hᴴ
+        self.PsiC = [m.Psi[:, Cs] for m, Cs in zip(self.modal, self.Cset)]     # condensed
+        self.PsiS = [m.Psi[:, S] for m, S in zip(self.modal, self.S)]          # explicit
         self.zero_modes = np.flatnonzero(self.modal[0].zero[self.S[0]])    # positions within S_0
         if self.zero_modes.size:
             PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]
             if np.any(np.linalg.norm(PsiZ, axis=0) == 0):
                 raise ValueError("a zero-frequency mode of harmonic 0 moves no contact: mechanism")
         self.eta_ref = np.zeros(self.zero_modes.size)
+        self.memory = np.zeros((self.npairs, 2))            # slider state before the period
         kscale = max(np.max(contacts.kn), np.max(contacts.kt))
         self._null_tol = gauge_tol * kscale * (np.linalg.norm(PsiZ, 2) if self.zero_modes.size
                                                else 0.0)
@@ -139,11 +147,22 @@ class CondensedHBM:
         s = self.S[h].size
         return self.eta_slices[h].start + k + (s if imag else 0)
 
-    def update_gauge(self, y: np.ndarray) -> None:
-        """Set the gauge reference to the zero-mode positions of ``y`` (called on every accepted
-        continuation point, so an undetermined rigid-body position keeps its last value)."""
+    def accept(self, y: np.ndarray, ev: "CoreEval") -> None:
+        """History update on every accepted continuation point: the gauge reference takes the
+        zero-mode positions of ``y`` (an undetermined rigid-body position keeps its last value)
+        and the slider memory the periodic slider state of ``ev`` (a pair that re-sticks keeps
+        its slider where it stopped)."""
         if self.zero_modes.size:
             self.eta_ref = y[self.eta_slices[0].start + self.zero_modes].copy()
+        self.memory = ev.aft.memory.copy()
+
+    def relative_drift(self, ev: "CoreEval") -> float:
+        """Largest dropped rigid-body equilibrium of ``ev`` relative to ``max|Ψ_0|·max|λ|``
+        (0 when no rigid-body direction is gauged)."""
+        if not ev.drift.size:
+            return 0.0
+        scale = np.max(np.abs(self.modal[0].Psi)) * max(np.max(np.abs(ev.lam)), 1e-300)
+        return float(np.max(np.abs(ev.drift)) / scale)
 
     def core_scale(self, y: np.ndarray) -> np.ndarray:
         """Scale of every core unknown for convergence tests: contact slots by the largest of
@@ -163,7 +182,8 @@ class CondensedHBM:
         H, C, p, npairs = self.H, self.C, self.p, self.npairs
         d = y[:self.n_d].reshape(C, p)
         aft = contact_aft(self.contacts, self.fourier, d.reshape(C, npairs, 3).transpose(1, 2, 0),
-                          jacobian=True if jacobian else ("dc" if self.zero_modes.size else False))
+                          jacobian=True if jacobian else ("dc" if self.zero_modes.size else False),
+                          memory=self.memory)
         lam = aft.lam.transpose(2, 0, 1).reshape(C, p).copy()
         lam[0] -= self.static
         D, Lam = to_complex(d, H), to_complex(lam, H)
@@ -179,7 +199,7 @@ class CondensedHBM:
         for h in range(H + 1):
             m, S, Cs, sl = self.modal[h], self.S[h], self.Cset[h], self.eta_slices[h]
             z, dz_dw, dz_dx = self._modal_impedance(h, omega, xi)
-            load = (self.gamma * m.f if self.forced else 0.0) - m.Psi.conj().T @ Lam[h]
+            load = (self.gamma * m.f if self.forced else 0.0) - self.PsiH[h] @ Lam[h]
             eta_S = self.eta_explicit(y, h)
             eta = np.empty(m.w2.size, complex)
             eta[Cs] = load[Cs] / z[Cs]
@@ -194,7 +214,7 @@ class CondensedHBM:
                 r[rows], r[sl] = real_vector(rd), real_vector(re)
             if not jacobian:
                 continue
-            PsiC, PsiS = m.Psi[:, Cs], m.Psi[:, S]
+            PsiC, PsiS = self.PsiC[h], self.PsiS[h]
             rhoC = 1.0 / z[Cs]
             G = (PsiC * rhoC) @ PsiC.conj().T
             A = np.vstack([G, PsiS.conj().T])                      # response to δΛ_h
@@ -226,16 +246,16 @@ class CondensedHBM:
             trivial[:self.n_d] = np.tile(np.repeat(~active, 3), C)
         drift = self._gauge(r, J, dr_dw, dr_dx, y, aft.jac)
         return CoreEval(r=r, J=J, dr_domega=dr_dw, dr_dxi=dr_dx, trivial=trivial, d=d, lam=lam,
-                        eta=etas, aft=aft, drift=drift)
+                        eta=etas, aft=aft, drift=drift, memory=self.memory)
 
     def modal_norm2(self, ev: CoreEval, omega: float, xi: float, h: int = 1):
         """``Σ_r |η_{h,r}|² = Q_hᴴ M_h Q_h`` and its gradient w.r.t. ``y``, ω and ξ."""
-        m, S, Cs = self.modal[h], self.S[h], self.Cset[h]
+        S, Cs = self.S[h], self.Cset[h]
         eta = ev.eta[h]
         z, dz_dw, dz_dx = self._modal_impedance(h, omega, xi)
         etaC = eta[Cs]
         grad = np.zeros(self.n_core)
-        u = m.Psi[:, Cs] @ (etaC * np.conj(1.0 / z[Cs]))
+        u = self.PsiC[h] @ (etaC * np.conj(1.0 / z[Cs]))
         row = -2.0 * (u.real[None] if h == 0 else real_vector(u)[None])
         kc = ev.aft.jac
         active = np.any(kc.reshape(self.npairs, -1) != 0, axis=1)
@@ -267,12 +287,14 @@ class CondensedHBM:
             return np.zeros(0)
         rows = self.eta_slices[0].start + self.zero_modes     # η_Z unknowns and their equilibria
         PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]           # (p, nz)
-        S = np.einsum("qicj,qjz->qicz", kc[..., 0], PsiZ.reshape(self.npairs, 3, nz)).reshape(-1, nz)
+        S = np.matmul(kc[..., 0].reshape(self.npairs, -1, 3),
+                      PsiZ.reshape(self.npairs, 3, nz)).reshape(-1, nz)
         _, sv, Vt = np.linalg.svd(S, full_matrices=False)
         null = np.r_[sv, np.zeros(nz - sv.size)] <= self._null_tol
         if not np.any(null):
             return np.zeros(0)
-        V = np.eye(nz) if np.all(null) else Vt.T * np.sign(Vt[np.arange(nz), np.argmax(np.abs(Vt), 1)])
+        sign = np.sign(Vt[np.arange(nz), np.argmax(np.abs(Vt), 1)])     # deterministic basis
+        V = np.eye(nz) if np.all(null) else Vt.T * sign
         rot = V.T @ r[rows]
         drift = rot[null].copy()
         rot[null] = V[:, null].T @ (y[rows] - self.eta_ref)

@@ -2,8 +2,8 @@
 (excitation frequency for the forced response), after Allgower & Georg (2003).
 
 Common rules: tangent predictor, Newton corrector reusing the last factorisation while it
-contracts (:func:`ringdamper.hbm.newton.newton`), step grown ×1.5 when the corrector cost at most
-3 Jacobian evaluations + factorisations and halved above 6, halved on failure, and a
+contracts (:func:`ringdamper.hbm.newton.newton`), step grown ×1.5 when the corrector's effort
+(Jacobians + chord iterations / 12) is at most 1.5 and halved above 4, halved on failure, and a
 corrector that moves farther than its own predictor step (or than ``jump_floor`` in the scaled
 norm) is rejected as a branch jump. Failures never raise: they end the run with a status.
 """
@@ -36,13 +36,13 @@ class StepControl:
     minimum: float
     maximum: float
     grow: float = 1.5
-    easy: float = 3.0        # corrector effort (in Jacobian factorisations) below which ds grows
-    hard: float = 6.0        # effort above which ds shrinks
+    easy: float = 1.5        # corrector effort (:attr:`NewtonResult.effort`) below which ds grows
+    hard: float = 4.0        # effort above which ds shrinks
     jump_floor: float = 0.05
 
     def adapt(self, ds: float, res) -> float:
-        """New step from the corrector's effort (wall time in units of one Jacobian
-        factorisation, :attr:`NewtonResult.effort`): cheap chord iterations count little."""
+        """New step from the corrector's effort (Jacobians + iterations / chord budget, see
+        :func:`ringdamper.hbm.newton.newton`): cheap chord iterations count little."""
         if res.effort <= self.easy:
             ds *= self.grow
         elif res.effort >= self.hard:
@@ -154,7 +154,7 @@ class ArclengthResult:
 def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.ndarray,
               steps: StepControl, tol: float, max_iter: int, stop: Callable[[np.ndarray], bool],
               max_points: int, max_angle: float = np.pi / 4, corner: float = 100.0,
-              rescale: Callable | None = None) -> ArclengthResult:
+              rescale: Callable | None = None, accept: Callable | None = None) -> ArclengthResult:
     """Pseudo-arc-length continuation of ``r(z) = 0`` (one fewer equation than unknowns).
 
     ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)``, ``J`` of shape ``(n−1, n)``; ``z0`` a
@@ -165,10 +165,13 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
     already been refined below ``corner × steps.minimum``: the turn is then a corner of the
     non-smooth branch (e.g. the stick–slip kink of a Jenkins element). Stops with status 0 when
     ``stop(z)`` is true. ``rescale(z, scale) -> scale`` may update the scaling after every
-    accepted point (the tangent is carried over in unscaled form). ``scales`` in the result holds
+    accepted point (the tangent is carried over in unscaled form); ``accept(z, payload)`` is
+    called on the start and every accepted point (history updates). ``scales`` in the result holds
     the scaling in force at every point.
     """
     r0, J0, trivial0, n_core0, payload0 = fun(z0, True)
+    if accept is not None:
+        accept(z0, payload0)
     t = _tangent(J0, trivial0, n_core0, direction / scale, scale)
     pts, tans, scales = [ContinuationPoint(0.0, z0, payload0, 0)], [t], [scale]
     z, s, ds = z0, 0.0, steps.initial
@@ -193,6 +196,8 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
             pts.append(ContinuationPoint(s, z, res.payload, res.iterations))
             tans.append(t)
             scales.append(scale)
+            if accept is not None:
+                accept(z, res.payload)
             if stop(z):
                 return ArclengthResult(pts, tans, scales, Status.CONVERGED, "")
             if rescale is not None:

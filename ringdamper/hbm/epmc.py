@@ -34,7 +34,8 @@ class Backbone:
     """dNNM on the α grid. Per α: ``omega`` [rad/s], ``xi`` [1/s], ``zeta``, ``status`` (0 =
     converged, see :class:`Status`), ``reason``, Newton ``iterations``, contact displacement and
     force slots ``d``, ``lam`` ``(nα, C, p)``, modal coordinates ``eta[h]`` ``(nα, m_h)`` of all
-    modes, and ``drift`` (largest dropped rigid-body equilibrium, see the gauge). ``branch``
+    modes, ``memory`` ``(nα, npairs, 2)`` the slider memory each point was solved with, and
+    ``drift`` (largest dropped rigid-body equilibrium, see the gauge). ``branch``
     holds every accepted continuation point ``(α, ω, ξ)``; ``model`` the condensed HBM and
     ``phase_index`` the unknown fixed by the phase condition (what :meth:`state` and
     :class:`EPMCProblem` need to restart from a point)."""
@@ -49,6 +50,7 @@ class Backbone:
     d: np.ndarray
     lam: np.ndarray
     eta: list
+    memory: np.ndarray
     drift: np.ndarray
     branch: np.ndarray
     model: CondensedHBM = field(repr=False)
@@ -56,7 +58,9 @@ class Backbone:
     wall_time: float = 0.0
 
     def state(self, i: int) -> np.ndarray:
-        """Unknown vector ``z = [y, ω, ξ]`` of grid point ``i``."""
+        """Unknown vector ``z = [y, ω, ξ]`` of grid point ``i``; sets the model's slider memory to
+        the one that point was solved with (so a restart reproduces it)."""
+        self.model.memory = self.memory[i].copy()
         y = self.model.pack(self.d[i], [e[i] for e in self.eta])
         return np.r_[y, self.omega[i], self.xi[i]]
 
@@ -102,7 +106,7 @@ class EPMCProblem:
         return np.r_[self.model.core_scale(z[:-2]), abs(z[-2]), abs(z[-2])]
 
     def accept(self, z, ev):
-        self.model.update_gauge(z[:-2])
+        self.model.accept(z[:-2], ev)
 
 
 def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
@@ -136,7 +140,7 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     if gauge_reference is not None:
         model.eta_ref = np.asarray(gauge_reference, float).copy()
     if alpha_start is None:
-        alpha_start = min(alpha[0], 0.5 * _linear_limit(structure, contacts, phi))
+        alpha_start = min(alpha[0], 0.5 * linear_limit(structure, contacts, phi))
     z0, phase_index = _initial_guess(model, phi, omega0, alpha_start)
     problem = EPMCProblem(model, phase_index, drift_tol)
     run = natural(problem.fun, problem.dfun_ds, z0, np.log(alpha), problem.scale, steps, tol,
@@ -150,7 +154,7 @@ def _stuck_mode(structure, contacts, mode, omega_target):
     return omegas[k], Phi[:, k]
 
 
-def _linear_limit(structure, contacts, phi):
+def linear_limit(structure, contacts, phi):
     """Smallest modal amplitude at which the linear stuck mode ``phi`` would make a preloaded
     pair slip (``kt |d_t| = μ N0``) or open (``kn |d_n| = N0``), or a gapped pair close."""
     d = np.abs(structure.harmonics[1].B @ phi).reshape(-1, 3)
@@ -190,6 +194,7 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall) -> Bac
     d = np.full((n, model.C, model.p), np.nan)
     lam = np.full_like(d, np.nan)
     eta = [np.full((n, mh.w2.size), np.nan, complex) for mh in model.modal]
+    memory = np.full((n, model.npairs, 2), np.nan)
     iters = np.zeros(n, int)
     status, reason = run.status.copy(), list(run.reason)
     for i, pt in enumerate(run.points):
@@ -197,16 +202,16 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall) -> Bac
             continue
         ev = pt.payload
         omega[i], xi[i], iters[i] = pt.z[-2], pt.z[-1], pt.iterations
-        d[i], lam[i] = ev.d, ev.lam
+        d[i], lam[i], memory[i] = ev.d, ev.lam, ev.memory
         for h in range(model.H + 1):
             eta[h][i] = ev.eta[h]
-        scale = np.max(np.abs(model.modal[0].Psi)) * max(np.max(np.abs(ev.lam)), 1e-300)
-        drift[i] = np.max(np.abs(ev.drift)) / scale if ev.drift.size else 0.0
+        drift[i] = model.relative_drift(ev)
         if drift[i] > problem.drift_tol:
             status[i] = Status.DRIFT
             reason[i] = (f"mean force on a free body {drift[i]:.2e} (relative): no periodic "
                          "solution, the body ratchets")
     branch = np.array([(np.exp(p.s), p.z[-2], p.z[-1]) for p in run.branch]).reshape(-1, 3)
     return Backbone(alpha=alpha, omega=omega, xi=xi, zeta=xi / (2 * omega), status=status,
-                    reason=reason, iterations=iters, d=d, lam=lam, eta=eta, drift=drift,
-                    branch=branch, model=model, phase_index=problem.phase_index, wall_time=wall)
+                    reason=reason, iterations=iters, d=d, lam=lam, eta=eta, memory=memory,
+                    drift=drift, branch=branch, model=model, phase_index=problem.phase_index,
+                    wall_time=wall)

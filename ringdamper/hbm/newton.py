@@ -9,7 +9,6 @@ active pairs.
 """
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
 from typing import Any, Callable
 
@@ -29,10 +28,10 @@ class Factorization:
         self.JTN = J[np.ix_(self.T, self.N)]
         self.JXT = J[np.ix_(extra, self.T)]
         self.extra_pos = np.searchsorted(self.N, extra)
-        A = J[np.ix_(self.N, self.N)]
+        A = J[np.ix_(self.N, self.N)] if self.T.size else J
         if self.T.size and extra.size:
             A[self.extra_pos] -= self.JXT @ self.JTN
-        self.lu = sla.lu_factor(A, check_finite=False)
+        self.lu = sla.lu_factor(A, check_finite=False, overwrite_a=A is not J)
 
     def solve(self, b: np.ndarray) -> np.ndarray:
         bN = b[self.N].copy()
@@ -53,12 +52,13 @@ class NewtonResult:
     factorization: Factorization | None
     reason: str = ""
     jacobians: int = 0                # Jacobian factorisations performed
-    effort: float = 0.0               # wall time in units of one Jacobian factorisation
+    effort: float = 0.0               # Jacobians + iterations / chord budget
 
 
 def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarray],
            tol: float = 1e-10, max_iter: int = 20, factorization: Factorization | None = None,
-           theta_max: float = 0.9, lambda_min: float = 1.0 / 256) -> NewtonResult:
+           theta_max: float = 0.5, chord_budget: int = 12,
+           lambda_min: float = 1.0 / 256) -> NewtonResult:
     """Newton's method with Jacobian reuse and damping for ``r(z) = 0``.
 
     ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)`` (``J`` None when not requested).
@@ -68,39 +68,33 @@ def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarr
 
     Steps (after Deuflhard, *Newton Methods for Nonlinear Problems*, 2004):
 
-    * chord steps with the given (or last) factorisation while they contract (rate θ < 
-      ``theta_max``) and the iterations still needed at that rate cost less than a new Jacobian
-      (both timed as they run); otherwise the Jacobian is recomputed at the better point;
+    * chord steps with the given (or last) factorisation while they contract (rate
+      θ < ``theta_max``) and the iterations still needed at that rate stay within
+      ``chord_budget`` (a chord step costs a residual, far less than a Jacobian and its LU);
+      otherwise the Jacobian is recomputed at the better point;
     * after a fresh Jacobian, a damped step ``λ δz``: accepted when the simplified correction
       ``J⁻¹ r(z + λδz)`` is shorter than ``(1 − λ/4) |δz|`` (natural monotonicity test), else λ
       is halved down to ``lambda_min``. This breaks the cycles plain Newton falls into on the
       piecewise-linear AFT residual near stick–slip transitions.
 
-    ``max_iter`` counts chord and Newton iterations; one iteration of each kind is allowed per
-    two of ``max_iter`` beyond the first ``max_iter`` Newton steps (chord steps are cheap).
+    ``max_iter`` bounds the Newton (fresh Jacobian) iterations; all iterations together are
+    bounded by ``4 max_iter``. The decisions depend only on the iterates (no timing), so runs
+    are reproducible. ``effort`` = Jacobians + iterations / ``chord_budget``.
     """
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        return _newton(fun, np.array(z0, float), scale, tol, max_iter, factorization,
-                       theta_max, lambda_min)
-
-
-def _newton(fun, z, scale, tol, max_iter, fac, theta_max, lambda_min):
-    start = time.perf_counter()
-    res = _iterate(fun, z, scale, tol, max_iter, fac, theta_max, lambda_min)
-    cost = getattr(res.factorization, "cost", None)
-    res.effort = (time.perf_counter() - start) / cost if cost else float(res.jacobians)
+        res = _iterate(fun, np.array(z0, float), scale, tol, max_iter, factorization,
+                       theta_max, chord_budget, lambda_min)
+    res.effort = res.jacobians + res.iterations / chord_budget
     return res
 
 
-def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, lambda_min):
-    n_jac = n_newton = 0
+def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_min):
+    n_jac = n_newton = it = 0
     fresh = fac is None
-    t_res = None
     ev = fun(z, fresh)
-    it = 0
+    dz = None                                    # correction of ``ev`` with ``fac``, if known
     while True:
         if fresh:
-            t0 = time.perf_counter()
             if ev[1] is None:
                 ev = fun(z, True)
             r, J, trivial, n_core, payload = ev
@@ -108,10 +102,11 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, lambda_min):
                 return NewtonResult(z, False, it, payload, None, "non-finite residual or Jacobian",
                                     n_jac)
             fac = Factorization(J, trivial, n_core)
-            fac.cost = time.perf_counter() - t0
             n_jac += 1
-        r, payload = ev[0], ev[4]
-        dz = fac.solve(-r)
+            dz = None
+        payload = ev[4]
+        if dz is None:
+            dz = _correction(fac, ev[0])
         sc = scale(z)
         step = np.max(np.abs(dz) / sc)
         if not np.isfinite(step):
@@ -128,30 +123,27 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, lambda_min):
             n_newton += 1
             lam = 1.0
             while True:
-                t0 = time.perf_counter()
                 trial = fun(z + lam * dz, False)
-                bar = _norm(fac, trial[0], sc)
-                t_res = time.perf_counter() - t0
+                corr = _correction(fac, trial[0])
+                bar = np.max(np.abs(corr) / sc)
                 if bar <= (1.0 - lam / 4) * step or lam <= lambda_min:
                     break
                 lam *= 0.5
-            z, ev, fresh = z + lam * dz, trial, lam < 1.0
+            z, ev, dz, fresh = z + lam * dz, trial, corr, lam < 1.0
             continue
-        t0 = time.perf_counter()                     # chord step
-        trial = fun(z + dz, False)
-        bar = _norm(fac, trial[0], sc)
-        t_res = time.perf_counter() - t0
-        theta = bar / step
+        trial = fun(z + dz, False)                   # chord step
+        corr = _correction(fac, trial[0])
+        theta = np.max(np.abs(corr) / sc) / step
         if theta < theta_max:
-            needed = np.log(tol / bar) / np.log(theta) if theta > 0 else 0.0
-            if needed * t_res <= getattr(fac, "cost", np.inf):
-                z, ev = z + dz, trial
+            needed = np.log(tol / (theta * step)) / np.log(theta) if theta > 0 else 0.0
+            if needed <= chord_budget:
+                z, ev, dz = z + dz, trial, corr
                 continue
-        if bar < step:
+        if theta < 1:
             z, ev = z + dz, trial
         fresh = True
     return NewtonResult(z, False, it, payload, fac, f"no convergence in {it} iterations", n_jac)
 
 
-def _norm(fac, r, sc):
-    return np.max(np.abs(fac.solve(-r)) / sc) if np.all(np.isfinite(r)) else np.inf
+def _correction(fac, r):
+    return fac.solve(-r) if np.all(np.isfinite(r)) else np.full(r.size, np.inf)

@@ -74,9 +74,11 @@ def free_body(H=1, normal_coupling=0.0):
 
 def cyclic_sector(seed=3, ring_support=3e3, kb=2e4):
     """Sector of a toy bladed disk with a ring: DoFs ``[disk n, t1, t2, ring n, t1, t2, blade]``.
-    With ``ring_support = 0`` the ring's rotation and axial motion are free (held by friction). Disk held to the ground, disk–disk and ring–ring springs to the next sector, ring
-    radial hoop spring to the ground, blade on the disk's axial DoF; one contact pair ring–disk.
-    Returns ``(M0, M1, K0, K1, B)`` with the sector energy coupling ``x_jᵀ K1 x_{j+1}``."""
+    Disk held to the ground, disk–disk and ring–ring springs to the next sector, ring radial hoop
+    spring to the ground (and ``ring_support`` on its t1, t2; with 0 the ring's rotation and
+    axial motion are free, held by friction only), blade (stiffness ``kb``) on the disk's axial
+    DoF; one contact pair ring–disk. Returns ``(M0, M1, K0, K1, B)`` with the sector energy
+    coupling ``x_jᵀ K1 x_{j+1}``."""
     rng = np.random.default_rng(seed)
     n = 7
     K0 = np.zeros((n, n))

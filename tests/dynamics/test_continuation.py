@@ -5,14 +5,14 @@ import numpy as np
 
 from ringdamper.frf import forced_response
 from ringdamper.hbm.continuation import Status
-from ringdamper.hbm.epmc import _linear_limit, epmc
+from ringdamper.hbm.epmc import linear_limit, epmc
 
 from .systems import multi_dof, two_dof
 
 
 def slip_onset(st, c):
     _, phi = st.stuck_modes(c.stuck_stiffness().ravel())
-    return _linear_limit(st, c, phi[:, 0])
+    return linear_limit(st, c, phi[:, 0])
 
 
 def test_backbone_crosses_stick_slip_without_gaps():

@@ -48,6 +48,7 @@ def test_eebm_forcing_matches_frf_peak(zeta_s):
     pred = eebm_at(a_star, zeta_s)
     gamma, w0 = pred.gamma[0], pred.omega[0]
     assert pred.q_res_h1[0] == pytest.approx(a_star, rel=1e-12)
+    assert pred.phi[0] == pytest.approx(np.pi / 2, abs=1e-12)     # force in phase with velocity
     st, c = one_dof(H=1)
     frf = forced_response(st, c, gamma, 0.95 * w0, 1.05 * w0, H=1, nt=NT, zeta_s=zeta_s,
                           tol=1e-12)

@@ -6,6 +6,7 @@ through stick, slip, lift-off of the preloaded pair and closure of the gapped pa
 import numpy as np
 
 from ringdamper.contact.friction import contact_aft, dissipated_energy
+from ringdamper.eebm import eebm
 from ringdamper.hbm.continuation import Status
 from ringdamper.hbm.epmc import epmc
 
@@ -32,3 +33,6 @@ def test_energy_identity_along_backbone():
         closed |= bool(np.any(normal[1] > 0))
         slipped |= w_contact > 1e-6 * scale
     assert lifted and closed and slipped                     # all contact states visited
+    res = eebm(bb, zeta_s=0.0)                               # E_damp without ζs = contact energy
+    assert np.allclose(res.e_damp, res.energy_dissipated.sum(axis=1), rtol=1e-8,
+                       atol=1e-9 * np.max(res.e_damp))

@@ -7,7 +7,7 @@ all DoFs but the right cut and the clamped ones; u = T(sigma) q and the sector m
 K_k = T^H K T, M_k = T^H M T (complex Hermitian; real for sigma = 0 and pi).
 
 Travelling-wave convention of the nonlinear stage (DESIGN §3.4): harmonic h of an EO excitation uses
-sigma_h = -2 pi h EO / N, i.e. u_{j+1} = e^{i sigma_h} u_j; ``harmonic_phase`` gives it.
+sigma_h = -2 pi h EO / N, i.e. u_{j+1} = e^{i sigma_h} u_j (``ringdamper.travelling_wave``).
 """
 
 from __future__ import annotations
@@ -19,12 +19,6 @@ import scipy.sparse as sp
 def interblade_phase(nd: int, n_sectors: int) -> float:
     """sigma = 2 pi k / N for nodal diameter k."""
     return 2.0 * np.pi * nd / n_sectors
-
-
-def harmonic_phase(h: int, engine_order: int, n_sectors: int) -> float:
-    """sigma_h = -2 pi h EO / N, wrapped to (-pi, pi]: the phase of harmonic h of an EO travelling wave."""
-    sigma = -2.0 * np.pi * ((h * engine_order) % n_sectors) / n_sectors
-    return float(np.angle(np.exp(1j * sigma)))
 
 
 def cyclic_transform(n_dofs: int, left_nodes, right_nodes, fixed_dofs, sector_angle: float,

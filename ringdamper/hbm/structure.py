@@ -19,6 +19,8 @@ from typing import Callable, Sequence
 import numpy as np
 import scipy.linalg as sla
 
+from ringdamper.travelling_wave import interblade_phase, nodal_diameter  # noqa: F401 (re-exported)
+
 
 @dataclass
 class HarmonicData:
@@ -154,15 +156,3 @@ def _mass_normalised_modes(K, M, real: bool):
         K, M = np.real(K), np.real(M)
     w2, Phi = sla.eigh(K, M)
     return w2, Phi
-
-
-def interblade_phase(h: int, n_sectors: int, engine_order: int) -> float:
-    """Interblade phase angle ``σ_h = −2π h EO / N`` wrapped to ``(−π, π]``."""
-    s = -2.0 * np.pi * ((h * engine_order) % n_sectors) / n_sectors
-    return float(s + 2.0 * np.pi if s <= -np.pi else s)
-
-
-def nodal_diameter(h: int, n_sectors: int, engine_order: int) -> int:
-    """Nodal diameter of harmonic ``h``: ``min(k, N − k)`` with ``k = h·EO mod N``."""
-    k = (h * engine_order) % n_sectors
-    return int(min(k, n_sectors - k))

@@ -23,7 +23,8 @@ import time
 import numpy as np
 import scipy.linalg as sla
 
-from ..fem.cyclic import cyclic_transform, harmonic_phase, project
+from ..fem.cyclic import cyclic_transform, project
+from ..travelling_wave import interblade_phase
 from ..fem.linalg import factorize
 from ..fem.model import SectorModel, contact_stiffness, relative_displacement_operator
 from ..modal import FamilyClassifier, cyclic_modes, labelled_modes
@@ -66,11 +67,11 @@ def convergence_study(model: SectorModel, engine_order: int, kn, kt, n_fi_values
     Kc = contact_stiffness(model, kn, kt)
     ref = {}
     for h in harmonics:
-        sigma = harmonic_phase(h, engine_order, model.n_sectors)
+        sigma = interblade_phase(h, model.n_sectors, engine_order)
         ref[h] = {"sigma": sigma,
                   "free": cyclic_modes(model, model.K, model.M, 0, n_modes, sigma=sigma).frequency,
                   "stuck": cyclic_modes(model, model.K + Kc, model.M, 0, n_modes, sigma=sigma).frequency}
-    sigma_t = harmonic_phase(target_harmonic, engine_order, model.n_sectors)
+    sigma_t = interblade_phase(target_harmonic, model.n_sectors, engine_order)
     nd_t = int(round(abs(sigma_t) * model.n_sectors / (2 * np.pi)))
     freq, labels, _ = labelled_modes(model, model.K + Kc, nd_t, n_modes, FamilyClassifier(model))
     target = int(np.flatnonzero(np.asarray(labels) == target_family)[0])

@@ -27,7 +27,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import xarray as xr
 
-from ..fem.cyclic import harmonic_phase
+from ..travelling_wave import interblade_phase, nodal_diameter
 from ..fem.model import SectorModel, relative_displacement_operator
 from ..io import variable
 from .craig_bampton import CraigBampton, craig_bampton
@@ -76,10 +76,6 @@ class ReducedSector:
                 "mead": h.size_mead, "interface": h.size}
 
 
-def nodal_diameter(sigma: float, n_sectors: int) -> int:
-    return int(round(abs(sigma) * n_sectors / (2 * np.pi)))
-
-
 def reduce_sector(model: SectorModel, engine_order: int, n_harmonics: int = N_HARMONICS,
                   n_fi: int = N_FI, n_if: int = N_IF, stiffness: sp.spmatrix | None = None,
                   harmonics=None, keep_modes: bool = False) -> ReducedSector:
@@ -104,10 +100,10 @@ def reduce_harmonics(model: SectorModel, part: Partition, cb: CraigBampton, engi
     """Steps 2 and 3 (Mead, interface) of every harmonic on a given CB model."""
     out = []
     for h in harmonics:
-        sigma = harmonic_phase(h, engine_order, model.n_sectors)
+        sigma = interblade_phase(h, model.n_sectors, engine_order)
         cm = mead(cb, part, model.sector_angle, sigma)
         ir = reduce_interface(cm, n_if)
-        out.append(ReducedHarmonic(harmonic=int(h), nd=nodal_diameter(sigma, model.n_sectors),
+        out.append(ReducedHarmonic(harmonic=int(h), nd=nodal_diameter(h, model.n_sectors, engine_order),
                                    sigma=sigma, K=ir.K, M=ir.M, n_physical=ir.n_physical,
                                    n_if=n_if, n_fi=cb.n_fi, size_mead=cm.size))
     n = out[0].size

@@ -33,7 +33,7 @@ def _gradients(basis: Basis) -> np.ndarray:
 
 def _values(basis: Basis) -> np.ndarray:
     """N_a at every quadrature point: (element, qp, a)."""
-    return np.stack([phi[0].value for phi in basis.basis], axis=0).transpose(1, 2, 0)
+    return np.stack([np.asarray(phi[0]) for phi in basis.basis], axis=0).transpose(1, 2, 0)
 
 
 def _element_dofs(basis: Basis) -> np.ndarray:
@@ -113,6 +113,6 @@ def mass_matrix(basis: Basis, density: float, components=(0, 1, 2)) -> sp.csr_ma
 def centrifugal_load(basis: Basis, density: float, omega: float) -> np.ndarray:
     """f = rho Omega^2 integral (x, y, 0) . v: the centrifugal body force about Z."""
     vals, wj = _values(basis), basis.dx
-    x = np.stack([basis.global_coordinates().value[i] for i in range(3)], axis=-1)  # (e, q, 3)
+    x = np.moveaxis(np.array(basis.global_coordinates()), 0, -1)  # (e, q, 3)
     x[..., 2] = 0.0
     return _assemble_vector(basis, density * omega**2 * np.einsum("eq,eqa,eqc->eac", wj, vals, x))

@@ -6,6 +6,8 @@ from ringdamper.config import ConfigError, validate_config
 
 configfile: "config.yaml"
 
+report: "workflow/report/workflow.rst"
+
 try:
     validate_config(config)
 except ConfigError as err:

@@ -22,7 +22,7 @@ from .config import load_config
 
 def _fe_chain(config: dict) -> dict:
     """Mesh + assembly + ND diagram + Campbell of the default ring (the modal stage)."""
-    from .calibration import stuck_contact_stiffness
+    from .fem.model import stuck_contact_stiffness
     from .fem.model import build_model
     from .geometry.sector import build_sector
     from .modal_stage import run_modal_stage

@@ -13,19 +13,12 @@ import copy
 import numpy as np
 from scipy.optimize import brentq
 
-from .fem.model import build_model, contact_stiffness
+from .fem.model import build_model, stuck_contact_stiffness
 from .fem.prestress import rpm_to_rad_s
 from .geometry.sector import build_sector
 from .modal import campbell, eo_crossing, family_frequency
 
 CALIBRATION_SPEED_FACTORS = (0.0, 0.9, 1.1)
-
-
-def stuck_contact_stiffness(model, contact_cfg):
-    """All pairs stuck: kn, kt = stiffness per area x tributary area."""
-    area = model.pairs.area
-    return contact_stiffness(model, contact_cfg["normal_stiffness_per_area"] * area,
-                             contact_cfg["tangential_stiffness_per_area"] * area)
 
 
 def crossing_speed(config: dict, speed_factors=CALIBRATION_SPEED_FACTORS) -> tuple[float, float]:

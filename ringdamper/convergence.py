@@ -12,7 +12,7 @@ import time
 
 import numpy as np
 
-from .calibration import stuck_contact_stiffness
+from .fem.model import stuck_contact_stiffness
 from .fem.model import build_model
 from .fem.prestress import prestressed_stiffness, rpm_to_rad_s
 from .geometry.sector import build_sector

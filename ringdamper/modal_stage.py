@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from .fem.model import SectorModel, build_model, contact_stiffness
+from .fem.model import SectorModel, build_model, stuck_contact_stiffness
 from .fem.prestress import prestressed_stiffness, rpm_to_rad_s
 from .geometry.sector import build_sector
 from .io import variable
@@ -36,9 +36,7 @@ class ModalResults:
 def linearised_contact(model: SectorModel, contact_cfg: dict, in_contact=None):
     """Stuck springs (kn, kt = stiffness per area x area) on the closed pairs, and a description."""
     closed = np.ones(len(model.pairs), bool) if in_contact is None else np.asarray(in_contact, bool)
-    area = model.pairs.area * closed
-    Kc = contact_stiffness(model, contact_cfg["normal_stiffness_per_area"] * area,
-                           contact_cfg["tangential_stiffness_per_area"] * area)
+    Kc = stuck_contact_stiffness(model, contact_cfg, closed)
     state = (NO_STATIC_STATE if in_contact is None else
              f"static contact state: {int(closed.sum())} of {len(closed)} pairs stuck (N0 > 0), "
              "the others free")

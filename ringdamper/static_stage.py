@@ -21,7 +21,7 @@ import xarray as xr
 from .contact.static import StaticContactResult, solve_static_contact
 from .fem.cyclic import cyclic_transform, project
 from .fem.elasticity import centrifugal_load
-from .fem.model import SectorModel, node_dofs, relative_displacement_operator
+from .fem.model import SectorModel, node_dofs, pair_stiffness, relative_displacement_operator
 from .fem.prestress import rpm_to_rad_s, spin_mass
 from .geometry.sector import BODY_RING
 from .io import variable
@@ -39,13 +39,6 @@ class StaticProblem:
     kt: np.ndarray
 
 
-def pair_stiffness(model: SectorModel, contact_cfg: dict) -> tuple[np.ndarray, np.ndarray]:
-    """(kn, kt) per pair (N/m): stiffness per unit area x tributary area."""
-    area = model.pairs.area
-    return (contact_cfg["normal_stiffness_per_area"] * area,
-            contact_cfg["tangential_stiffness_per_area"] * area)
-
-
 def static_problem(model: SectorModel, config: dict, speed_rpm: float,
                    rigid_blisk: bool = False) -> StaticProblem:
     """Assemble the ND-0 static contact problem (``rigid_blisk`` clamps the whole blisk: an oracle)."""
@@ -58,7 +51,7 @@ def static_problem(model: SectorModel, config: dict, speed_rpm: float,
     K = project(T, model.K - omega**2 * spin_mass(model))
     f = T.T @ centrifugal_load(model.basis, model.material["density"], omega)
     G = (relative_displacement_operator(model) @ T).tocsr()
-    kn, kt = pair_stiffness(model, config["contact"])
+    kn, kt = pair_stiffness(model.pairs.area, config["contact"])
     return StaticProblem(K=K, f=f, G=G, T=T, kn=kn, kt=kt)
 
 

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from annulus import assemble_full
-from ringdamper.calibration import stuck_contact_stiffness
+from ringdamper.fem.model import stuck_contact_stiffness
 from ringdamper.fem.cyclic import cyclic_transform
 from ringdamper.travelling_wave import interblade_phase
 from ringdamper.fem.linalg import lowest_modes

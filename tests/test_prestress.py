@@ -2,7 +2,8 @@
 import numpy as np
 import pytest
 
-from ringdamper.calibration import crossing_speed, stuck_contact_stiffness
+from ringdamper.calibration import crossing_speed
+from ringdamper.fem.model import stuck_contact_stiffness
 from ringdamper.fem.elasticity import internal_force, tangent_stiffness
 from ringdamper.fem.model import build_model
 from ringdamper.fem.prestress import prestressed_stiffness, rpm_to_rad_s, static_centrifugal

@@ -196,6 +196,20 @@ def relative_displacement_operator(model: SectorModel) -> sp.csr_matrix:
     return G.tocsr()
 
 
+def pair_stiffness(area, contact_cfg: dict, closed=None) -> tuple[np.ndarray, np.ndarray]:
+    """(kn, kt) per pair (N/m): stiffness per unit area x tributary area; zero where not ``closed``."""
+    area = np.asarray(area, dtype=float)
+    if closed is not None:
+        area = np.where(closed, area, 0.0)
+    return (contact_cfg["normal_stiffness_per_area"] * area,
+            contact_cfg["tangential_stiffness_per_area"] * area)
+
+
+def stuck_contact_stiffness(model: SectorModel, contact_cfg: dict, closed=None) -> sp.csr_matrix:
+    """Linearised stuck contact (springs on the ``closed`` pairs, all pairs by default)."""
+    return contact_stiffness(model, *pair_stiffness(model.pairs.area, contact_cfg, closed))
+
+
 def contact_stiffness(model: SectorModel, kn, kt) -> sp.csr_matrix:
     """Stuck linearised contact: G^T diag(kn, kt, kt) G (kn, kt per pair or scalar, N/m)."""
     m = len(model.pairs)

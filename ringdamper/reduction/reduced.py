@@ -29,6 +29,7 @@ import xarray as xr
 
 from ..travelling_wave import interblade_phase, nodal_diameter
 from ..fem.model import SectorModel, relative_displacement_operator
+from ..fem.model import pair_stiffness as stiffness_of_pairs  # the one law: per area x area
 from ..io import variable
 from .craig_bampton import CraigBampton, craig_bampton
 from .cyclic import mead
@@ -122,11 +123,7 @@ def reduce_harmonics(model: SectorModel, part: Partition, cb: CraigBampton, engi
 def pair_stiffness(area, N0, contact_cfg: dict) -> tuple[np.ndarray, np.ndarray]:
     """kn, kt per pair (N/m) of the linearised stuck contact: stiffness per area x area where N0 > 0,
     zero on open pairs."""
-    closed = np.asarray(N0) > 0.0
-    area = np.asarray(area, dtype=float)
-    kn = np.where(closed, contact_cfg["normal_stiffness_per_area"] * area, 0.0)
-    kt = np.where(closed, contact_cfg["tangential_stiffness_per_area"] * area, 0.0)
-    return kn, kt
+    return stiffness_of_pairs(area, contact_cfg, closed=np.asarray(N0) > 0.0)
 
 
 def _pair_diag(kn, kt, m: int) -> np.ndarray:

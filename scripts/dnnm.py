@@ -1,7 +1,7 @@
 """Rule script: reduced.nc + static.nc -> dnnm.nc (EPMC backbone + E-EBM on the common alpha grid).
 
 The target mode is the harmonic-1 stuck mode nearest the resonance of the modal stage; omega0 is
-normalised by the default ring's linearised stuck frequency. A failure writes dnnm.nc with
+normalised by the default ring's linearised stuck frequency (both from stuck_default.yaml). A failure writes dnnm.nc with
 status 99 and the reason, so the campaign goes on (DESIGN §5).
 """
 import traceback
@@ -9,8 +9,7 @@ import traceback
 import numpy as np
 import yaml
 
-from ringdamper.dnnm_stage import (contacts_from_static, failed_dnnm, run_dnnm, structure_from_reduced,
-                                   target_stuck_frequency)
+from ringdamper.dnnm_stage import failed_dnnm, run_dnnm
 from ringdamper.io import read_netcdf, write_netcdf
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
@@ -20,12 +19,9 @@ with open(sm.log[0], "w") as log:
         static = read_netcdf(sm.input.static)
         if static.attrs["status"] != 0:
             raise RuntimeError(f"static solve failed: {static.attrs['reason']}")
-        target_hz = yaml.safe_load(open(sm.input.resonance))["frequency_hz"]
-        default = structure_from_reduced(read_netcdf(sm.input.default_reduced), 1)
-        default_contacts = contacts_from_static(read_netcdf(sm.input.default_static), cfg["contact"],
-                                                cfg["dnnm"]["friction_law"])
-        omega_default = target_stuck_frequency(default, default_contacts, target_hz)
-        ds = run_dnnm(read_netcdf(sm.input.reduced), static, cfg, target_hz, omega_default)
+        norm = yaml.safe_load(open(sm.input.normalisation))
+        ds = run_dnnm(read_netcdf(sm.input.reduced), static, cfg, norm["target_frequency_hz"],
+                      norm["omega_stuck_default_rad_s"])
         counts = np.bincount(ds.status.values.astype(int), minlength=5)
         log.write(f"kappa={sm.params.kappa} status counts {counts.tolist()} "
                   f"wall {ds.attrs['wall_time_s']:.1f} s\n")

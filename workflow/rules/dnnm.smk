@@ -1,13 +1,26 @@
 DEFAULT_GID = gid_of((0.0, 0.0, 0.0))
 
 
+rule stuck_default:
+    input:
+        reduced=f"{RESULTS}/geometry/{DEFAULT_GID}/reduced.nc",
+        static=f"{RESULTS}/geometry/{DEFAULT_GID}/static.nc",
+        resonance=f"{RESULTS}/modal/resonance.yaml",
+    output:
+        f"{RESULTS}/modal/stuck_default.yaml",
+    log:
+        f"{RESULTS}/logs/stuck_default.log",
+    conda:
+        "../../envs/dynamics.yaml"
+    script:
+        "../../scripts/stuck_default.py"
+
+
 rule dnnm:
     input:
         reduced=f"{RESULTS}/geometry/{{gid}}/reduced.nc",
         static=f"{RESULTS}/geometry/{{gid}}/static.nc",
-        default_reduced=f"{RESULTS}/geometry/{DEFAULT_GID}/reduced.nc",
-        default_static=f"{RESULTS}/geometry/{DEFAULT_GID}/static.nc",
-        resonance=f"{RESULTS}/modal/resonance.yaml",
+        normalisation=f"{RESULTS}/modal/stuck_default.yaml",
     output:
         f"{RESULTS}/geometry/{{gid}}/dnnm.nc",
     params:

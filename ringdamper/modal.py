@@ -47,21 +47,19 @@ def cyclic_modes(model: SectorModel, K: sp.spmatrix, M: sp.spmatrix, nd: int, n_
 
 
 class FamilyClassifier:
-    """Names modes 1B, 1T, 2B (blade) or 1D (disk) from energy fractions and blade shapes."""
+    """Names modes 1B, 1T, 2B (blade), 1D (disk) or ring from energy fractions and blade shapes."""
 
     def __init__(self, model: SectorModel):
         self.model = model
         self.K_blade, sub = self._part_stiffness(PART_BLADE)
         self.K_ring, _ = self._part_stiffness(PART_RING)
         nodes = model.nodes
-        g = model.geometry
         blade_nodes = np.unique(sub.element_dofs)
         r = np.hypot(nodes[blade_nodes, 0], nodes[blade_nodes, 1])
         self.tip = blade_nodes[np.isclose(r, r.max(), atol=1e-6)]
         z = nodes[:, 2]
         self.leading = blade_nodes[np.isclose(z[blade_nodes], z[blade_nodes].min(), atol=1e-9)]
         self.leading = self.leading[np.argsort(np.hypot(nodes[self.leading, 0], nodes[self.leading, 1]))]
-        self.half_angle = g.half_angle
 
     def _part_stiffness(self, part):
         """Stiffness of one part's elements, and the sub-basis."""

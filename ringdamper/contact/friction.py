@@ -170,7 +170,10 @@ def play_operator(lo: np.ndarray, hi: np.ndarray, w0: np.ndarray | float = 0.0):
 
 
 def _clip_with_source(x, sx, lo, hi, slo, shi):
-    below, above = x < lo, x > hi
+    """``clip(x, lo, hi)`` and its source. A tie goes to the bound: a value equal to a bound
+    moves with it (the memory, source −1, is constant and would drop that derivative when the
+    march restarts from its own periodic state)."""
+    below, above = x <= lo, x >= hi
     return (np.where(below, lo, np.where(above, hi, x)),
             np.where(below, slo, np.where(above, shi, sx)))
 

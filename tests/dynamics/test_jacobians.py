@@ -111,3 +111,27 @@ def test_epmc_residual_jacobian_with_gauge(amp):
     ev = model.evaluate(y, 150.0, 2.0)
     assert (ev.drift.size > 0) == (amp > 1e-3)                   # gauge active only in slip
     _check_problem(lambda x: prob.fun(x, np.log(1e-3))[:2], z, prob.scale(z))
+
+
+@pytest.mark.parametrize("state", ["separation", "mixed", "slip"])
+def test_contact_jacobian_restarted_from_own_periodic_state(state):
+    """A continuation restarts the march from the periodic slider state of the point itself
+    (e.g. a re-solve at an accepted point): the state then equals the bounds it came from
+    exactly, and the Jacobian must still follow them (it once took the constant memory)."""
+    rng = np.random.default_rng(zlib.crc32(f"restart-{state}".encode()))
+    f = Fourier(3, 64)
+    kn, kt, mu, N0 = 1e5, 4e4, 0.3, 20.0
+    c = FrictionContacts(kn=kn, kt=kt, mu=mu, N0=N0, gap=0.0, law="jenkins")
+    ta, na = STATES[state]
+    d = rng.standard_normal((1, 3, f.C)) * np.array([na * N0 / kn, ta * mu * N0 / kt,
+                                                    ta * mu * N0 / kt])[None, :, None]
+    memory = contact_aft(c, f, d, jacobian=False).memory
+    res = contact_aft(c, f, d, memory=memory)
+    assert np.array_equal(res.memory, memory)                       # periodic state reproduced
+    J = res.jac.reshape(3 * f.C, 3 * f.C)
+
+    def lam(x):
+        return contact_aft(c, f, x.reshape(d.shape), jacobian=False, memory=memory).lam.ravel()
+
+    Jfd = fd_jacobian(lam, d.ravel(), np.full(d.size, 1e-6 * np.max(np.abs(d))))
+    assert np.max(np.abs(J - Jfd)) <= 1e-6 * np.max(np.abs(Jfd))

@@ -149,7 +149,7 @@ def resonance_peak(frf: FRF, measure: str = "peak", xtol: float = 1e-12) -> Peak
     if i == 0 or i == len(frf.points) - 1:
         return best
     model, problem = frf.problem.model, frf.problem
-    model.accept(frf.points[i].z[:-1], frf.points[i].payload)      # history of the best point
+    model.accept(frf.points[i].z[:-1], frf.points[i].payload)      # gauge state of the best point
     scale, t = frf.scales[i], frf.tangents[i]
     zi = frf.points[i].z
     plane = t / scale

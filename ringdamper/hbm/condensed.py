@@ -17,9 +17,15 @@ displacements ``d`` (slot-major, ``(C, p)``), then ``η_{h,S}`` (harmonic 0 real
 
 with ``Λ_h`` the contact forces from the AFT (:mod:`ringdamper.contact.friction`) minus the static
 contact force ``(N0, 0, 0)``: displacements are measured from the static equilibrium, where
-that force is balanced by the static loads. The slider memory before the period (``memory``) is
-the static state at the start of a continuation and then the periodic state of the previous
-accepted solution (:meth:`CondensedHBM.accept`).
+that force is balanced by the static loads. The slider memory before the period is the static
+state (slider at zero) at every evaluation, so a solution depends on its own unknowns only, not on
+the continuation path: a pair that slips during the period has a unique periodic state anyway,
+and a pair that sticks throughout keeps the static slider position projected onto the band of
+positions that stick, ``[max_k(d_k − r_k), min_k(d_k + r_k)]``, i.e. it is pushed only as far as
+the motion forces it (:func:`ringdamper.contact.friction.play_operator`), independently of where
+the period starts. (Carrying the previous point's slider state instead puts every pair that the
+growing amplitude pushes exactly on its stick/slip kink at every accepted point; Newton then
+cycles between the two sides.)
 
 Jacobian: ``∂r/∂y = I + A_h K_c`` with ``A_h = [Ψ_C diag(1/z_C) Ψ_Cᴴ ; Ψ_Sᴴ]`` per harmonic and
 ``K_c`` the AFT Jacobian (block-diagonal over pairs), plus the explicit-mode blocks.
@@ -33,6 +39,13 @@ position is arbitrary. Those directions (null space of ``K_c Ψ_Z`` on the DC sl
 the explicit gauge ``η_Z = η_ref`` instead (``η_ref``: the last determined position, set by the
 caller), and the dropped equilibrium is returned as ``drift``: if non-zero at a solution, no
 periodic solution exists (the free body ratchets).
+
+Pinning: a direction that lost its hold at an accepted point, or whose hold Newton found and
+lost again within a failed step (:meth:`CondensedHBM.pin_seen`), stays gauged for the rest of
+the branch (:meth:`CondensedHBM.pin`). Near the loss of hold the last holding pair cannot carry
+the imbalance and the gauge position keeps it stuck, so neither equation set alone has a
+solution and Newton cycles between them; the pinned direction behaves as a stop holding the
+body at its last equilibrium position, and the force the stop takes is the reported ``drift``.
 """
 from __future__ import annotations
 
@@ -50,8 +63,8 @@ class CoreEval:
     """One evaluation: residual ``r``, Jacobian ``J`` (core × core) and its columns for ω and ξ,
     the trivial unknowns (d slots of pairs with zero contact Jacobian: their columns are unit
     vectors), contact displacement/force slots ``d``, ``lam`` (C × p), modal coordinates ``eta[h]``
-    of every mode, the AFT result, the gauge drift (equilibrium dropped for the gauge) and the
-    slider ``memory`` the evaluation used."""
+    of every mode, the AFT result, the gauge drift (equilibria dropped for the gauge) and the
+    gauged directions ``gauge`` (orthonormal columns in the zero-mode space, one per drift)."""
 
     r: np.ndarray
     J: np.ndarray | None
@@ -63,7 +76,7 @@ class CoreEval:
     eta: list
     aft: ContactAFT
     drift: np.ndarray
-    memory: np.ndarray
+    gauge: np.ndarray
 
 
 class CondensedHBM:
@@ -114,7 +127,8 @@ class CondensedHBM:
             if np.any(np.linalg.norm(PsiZ, axis=0) == 0):
                 raise ValueError("a zero-frequency mode of harmonic 0 moves no contact: mechanism")
         self.eta_ref = np.zeros(self.zero_modes.size)
-        self.memory = np.zeros((self.npairs, 2))            # slider state before the period
+        self.pinned = np.zeros((self.zero_modes.size, 0))   # directions gauged for good
+        self.seen = np.zeros((self.zero_modes.size, 0))     # lost holds seen since the last accept
         kscale = max(np.max(contacts.kn), np.max(contacts.kt))
         self._null_tol = gauge_tol * kscale * (np.linalg.norm(PsiZ, 2) if self.zero_modes.size
                                                else 0.0)
@@ -150,11 +164,31 @@ class CondensedHBM:
     def accept(self, y: np.ndarray, ev: "CoreEval") -> None:
         """History update on every accepted continuation point: the gauge reference takes the
         zero-mode positions of ``y`` (an undetermined rigid-body position keeps its last value)
-        and the slider memory the periodic slider state of ``ev`` (a pair that re-sticks keeps
-        its slider where it stopped)."""
+        and the directions gauged at ``ev`` are pinned (module docstring)."""
         if self.zero_modes.size:
             self.eta_ref = y[self.eta_slices[0].start + self.zero_modes].copy()
-        self.memory = ev.aft.memory.copy()
+            self.pin(ev.gauge)
+            self.seen = np.zeros_like(self.pinned[:, :0])
+
+    def pin(self, basis: np.ndarray) -> bool:
+        """Gauge the directions ``basis`` (columns in the zero-mode space) for good; True if that
+        added a direction."""
+        merged = np.hstack([self.pinned, basis])
+        if not merged.shape[1]:
+            return False
+        u, sv, _ = np.linalg.svd(merged, full_matrices=False)
+        rank = int(np.sum(sv > 1e-8 * sv[0]))
+        if rank == self.pinned.shape[1]:
+            return False
+        self.pinned = u[:, :rank]
+        return True
+
+    def pin_seen(self) -> bool:
+        """Pin the directions whose hold was lost in some evaluation since the last accepted
+        point (after a failed step: Newton cycled between holding and not holding)."""
+        added = self.pin(self.seen)
+        self.seen = np.zeros_like(self.pinned[:, :0])
+        return added
 
     def relative_drift(self, ev: "CoreEval") -> float:
         """Largest dropped rigid-body equilibrium of ``ev`` relative to ``max|Ψ_0|·max|λ|``
@@ -182,8 +216,7 @@ class CondensedHBM:
         H, C, p, npairs = self.H, self.C, self.p, self.npairs
         d = y[:self.n_d].reshape(C, p)
         aft = contact_aft(self.contacts, self.fourier, d.reshape(C, npairs, 3).transpose(1, 2, 0),
-                          jacobian=True if jacobian else ("dc" if self.zero_modes.size else False),
-                          memory=self.memory)
+                          jacobian=True if jacobian else ("dc" if self.zero_modes.size else False))
         lam = aft.lam.transpose(2, 0, 1).reshape(C, p).copy()
         lam[0] -= self.static
         D, Lam = to_complex(d, H), to_complex(lam, H)
@@ -244,9 +277,9 @@ class CondensedHBM:
         if jacobian:
             trivial = np.zeros(self.n_core, bool)
             trivial[:self.n_d] = np.tile(np.repeat(~active, 3), C)
-        drift = self._gauge(r, J, dr_dw, dr_dx, y, aft.jac)
+        drift, gauge = self._gauge(r, J, dr_dw, dr_dx, y, aft.jac)
         return CoreEval(r=r, J=J, dr_domega=dr_dw, dr_dxi=dr_dx, trivial=trivial, d=d, lam=lam,
-                        eta=etas, aft=aft, drift=drift, memory=self.memory)
+                        eta=etas, aft=aft, drift=drift, gauge=gauge)
 
     def modal_norm2(self, ev: CoreEval, omega: float, xi: float, h: int = 1):
         """``Σ_r |η_{h,r}|² = Q_hᴴ M_h Q_h`` and its gradient w.r.t. ``y``, ω and ξ."""
@@ -280,35 +313,56 @@ class CondensedHBM:
         return slice(sl.start * self.p, sl.stop * self.p)
 
     def _gauge(self, r, J, dr_dw, dr_dx, y, kc):
-        """Replace the rigid-body equilibria along directions not held by any contact by the
-        gauge ``η_Z = η_ref`` (module docstring); return the dropped equilibria (drift)."""
+        """Replace the rigid-body equilibria along the pinned directions and along directions not
+        held by any contact by the gauge ``η_Z = η_ref`` (module docstring); return the dropped
+        equilibria (drift) and the gauged directions."""
         nz = self.zero_modes.size
+        pinned = self.pinned
         if nz == 0:
-            return np.zeros(0)
+            return np.zeros(0), pinned
         rows = self.eta_slices[0].start + self.zero_modes     # η_Z unknowns and their equilibria
-        PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]           # (p, nz)
-        S = np.matmul(kc[..., 0].reshape(self.npairs, -1, 3),
-                      PsiZ.reshape(self.npairs, 3, nz)).reshape(-1, nz)
-        _, sv, Vt = np.linalg.svd(S, full_matrices=False)
-        null = np.r_[sv, np.zeros(nz - sv.size)] <= self._null_tol
-        if not np.any(null):
-            return np.zeros(0)
-        sign = np.sign(Vt[np.arange(nz), np.argmax(np.abs(Vt), 1)])     # deterministic basis
-        V = np.eye(nz) if np.all(null) else Vt.T * sign
+        free = _complement(pinned)
+        new = np.zeros((nz, 0))
+        if free.shape[1]:
+            PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]       # (p, nz)
+            S = np.matmul(kc[..., 0].reshape(self.npairs, -1, 3),
+                          PsiZ.reshape(self.npairs, 3, nz)).reshape(-1, nz) @ free
+            _, sv, Vt = np.linalg.svd(S, full_matrices=False)
+            null = np.r_[sv, np.zeros(free.shape[1] - sv.size)] <= self._null_tol
+            if np.any(null) and not np.all(null):
+                sign = np.sign(Vt[np.arange(Vt.shape[0]), np.argmax(np.abs(Vt), 1)])
+                free = free @ (Vt.T * sign)                            # deterministic basis
+            new, free = free[:, null], free[:, ~null]
+            self.seen = np.hstack([self.seen, new])
+        gauge = np.hstack([pinned, new])
+        if not gauge.shape[1]:
+            return np.zeros(0), gauge
+        V = np.hstack([free, gauge])                                    # held | gauged
+        g = slice(free.shape[1], nz)
         rot = V.T @ r[rows]
-        drift = rot[null].copy()
-        rot[null] = V[:, null].T @ (y[rows] - self.eta_ref)
+        drift = rot[g].copy()
+        rot[g] = gauge.T @ (y[rows] - self.eta_ref)
         r[rows] = rot
         if J is not None:
             Jr = V.T @ J[rows]
-            Jr[null] = 0.0
-            Jr[np.ix_(np.flatnonzero(null), rows)] = V[:, null].T
+            Jr[g] = 0.0
+            Jr[g, rows] = gauge.T
             J[rows] = Jr
             for vec in (dr_dw, dr_dx):
                 v = V.T @ vec[rows]
-                v[null] = 0.0
+                v[g] = 0.0
                 vec[rows] = v
-        return drift
+        return drift, gauge
+
+
+def _complement(basis: np.ndarray) -> np.ndarray:
+    """Orthonormal basis of the orthogonal complement of the orthonormal columns ``basis``
+    (the identity when there are none)."""
+    n, k = basis.shape
+    if k == 0:
+        return np.eye(n)
+    u, _, _ = np.linalg.svd(basis, full_matrices=True)
+    return u[:, k:]
 
 
 def pole_modes(structure: Structure, H: int, lo: float, hi: float) -> list:

@@ -79,13 +79,16 @@ def _blocked(z_new, z_pred, z_old, scale, floor):
 
 def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
             scale: Callable, steps: StepControl, tol: float, max_iter: int,
-            accept: Callable | None = None, s_start: float | None = None) -> NaturalResult:
+            accept: Callable | None = None, s_start: float | None = None,
+            on_failure: Callable[[], bool] | None = None) -> NaturalResult:
     """Continuation in the scalar parameter ``s`` from ``s_start`` (default ``grid[0]``; ``z0``
     is the guess there) over the increasing ``grid``, landing exactly on every grid value (so grid
     outputs are converged solutions, not interpolants).
 
     ``fun(z, s, jacobian) -> (r, J, trivial, n_core, payload)``; ``dfun_ds(z, s)`` is ``∂r/∂s``;
-    ``accept(z, payload)`` is called on every accepted point (e.g. to update a gauge).
+    ``accept(z, payload)`` is called on every accepted point (e.g. to update a gauge);
+    ``on_failure()`` after a failed corrector: if it returns True the problem has changed (e.g. a
+    rigid-body direction was pinned) and the same step is tried again before it is halved.
     """
     grid = np.asarray(grid, float)
     n = grid.size
@@ -123,6 +126,8 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
             elif accept is not None:
                 accept(z, res.payload)
             ds = steps.adapt(ds, res)
+            continue
+        if on_failure is not None and on_failure():
             continue
         ds = 0.5 * (s_t - s)
         if ds < steps.minimum:

@@ -34,7 +34,7 @@ class Backbone:
     """dNNM on the α grid. Per α: ``omega`` [rad/s], ``xi`` [1/s], ``zeta``, ``status`` (0 =
     converged, see :class:`Status`), ``reason``, Newton ``iterations``, contact displacement and
     force slots ``d``, ``lam`` ``(nα, C, p)``, modal coordinates ``eta[h]`` ``(nα, m_h)`` of all
-    modes, ``memory`` ``(nα, npairs, 2)`` the slider memory each point was solved with, and
+    modes, ``pinned`` the rigid-body directions gauged at each point and
     ``drift`` (largest dropped rigid-body equilibrium, see the gauge). ``branch``
     holds every accepted continuation point ``(α, ω, ξ)``; ``model`` the condensed HBM and
     ``phase_index`` the unknown fixed by the phase condition (what :meth:`state` and
@@ -50,7 +50,7 @@ class Backbone:
     d: np.ndarray
     lam: np.ndarray
     eta: list
-    memory: np.ndarray
+    pinned: list
     drift: np.ndarray
     branch: np.ndarray
     model: CondensedHBM = field(repr=False)
@@ -58,9 +58,9 @@ class Backbone:
     wall_time: float = 0.0
 
     def state(self, i: int) -> np.ndarray:
-        """Unknown vector ``z = [y, ω, ξ]`` of grid point ``i``; sets the model's slider memory to
-        the one that point was solved with (so a restart reproduces it)."""
-        self.model.memory = self.memory[i].copy()
+        """Unknown vector ``z = [y, ω, ξ]`` of grid point ``i``; sets the model's pinned
+        rigid-body directions to those that point was solved with (so a restart reproduces it)."""
+        self.model.pinned = self.pinned[i].copy()
         y = self.model.pack(self.d[i], [e[i] for e in self.eta])
         return np.r_[y, self.omega[i], self.xi[i]]
 
@@ -108,6 +108,11 @@ class EPMCProblem:
     def accept(self, z, ev):
         self.model.accept(z[:-2], ev)
 
+    def on_failure(self) -> bool:
+        """After a failed step: pin the rigid-body directions whose hold was lost on the way
+        (:meth:`CondensedHBM.pin_seen`); True if that changed the problem (retry the step)."""
+        return self.model.pin_seen()
+
 
 def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
          nt: int | None = None, mode: int = 0, omega_target: float | None = None,
@@ -144,7 +149,8 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     z0, phase_index = _initial_guess(model, phi, omega0, alpha_start)
     problem = EPMCProblem(model, phase_index, drift_tol)
     run = natural(problem.fun, problem.dfun_ds, z0, np.log(alpha), problem.scale, steps, tol,
-                  max_iter, accept=problem.accept, s_start=np.log(alpha_start))
+                  max_iter, accept=problem.accept, s_start=np.log(alpha_start),
+                  on_failure=problem.on_failure)
     return _collect(run, model, alpha, problem, time.perf_counter() - t0)
 
 
@@ -194,7 +200,7 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall) -> Bac
     d = np.full((n, model.C, model.p), np.nan)
     lam = np.full_like(d, np.nan)
     eta = [np.full((n, mh.w2.size), np.nan, complex) for mh in model.modal]
-    memory = np.full((n, model.npairs, 2), np.nan)
+    pinned = [np.zeros((model.zero_modes.size, 0))] * n
     iters = np.zeros(n, int)
     status, reason = run.status.copy(), list(run.reason)
     for i, pt in enumerate(run.points):
@@ -202,7 +208,7 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall) -> Bac
             continue
         ev = pt.payload
         omega[i], xi[i], iters[i] = pt.z[-2], pt.z[-1], pt.iterations
-        d[i], lam[i], memory[i] = ev.d, ev.lam, ev.memory
+        d[i], lam[i], pinned[i] = ev.d, ev.lam, ev.gauge
         for h in range(model.H + 1):
             eta[h][i] = ev.eta[h]
         drift[i] = model.relative_drift(ev)
@@ -212,6 +218,6 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall) -> Bac
                          "solution, the body ratchets")
     branch = np.array([(np.exp(p.s), p.z[-2], p.z[-1]) for p in run.branch]).reshape(-1, 3)
     return Backbone(alpha=alpha, omega=omega, xi=xi, zeta=xi / (2 * omega), status=status,
-                    reason=reason, iterations=iters, d=d, lam=lam, eta=eta, memory=memory,
+                    reason=reason, iterations=iters, d=d, lam=lam, eta=eta, pinned=pinned,
                     drift=drift, branch=branch, model=model, phase_index=problem.phase_index,
                     wall_time=wall)

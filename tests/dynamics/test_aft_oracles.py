@@ -103,3 +103,27 @@ def test_separation_erases_memory():
     dt = f.synth(d[0, 1])
     assert res.tangential[0, 0, k % f.nt] == pytest.approx(0.0, abs=KT * abs(dt[k % f.nt]
                                                                           - dt[k - 1]) * 1.0001)
+
+
+def test_stuck_pair_keeps_the_projected_static_state_whatever_the_period_start():
+    """The march starts from the static slider state (zero). A pair whose motion leaves zero
+    outside its stick band ``[max(d − r), min(d + r)]`` is pushed to the nearest edge and then
+    sticks: the periodic force is the same whichever sample the period starts at (the phase of
+    the solution is arbitrary), and equals ``kt (d − w*)`` with ``w* = clip(0, band)``."""
+    f = Fourier(2, 128)
+    c = FrictionContacts(kn=KN, kt=KT, mu=MU, N0=N0, gap=0.0)
+    d = np.zeros((1, 3, f.C))
+    d[0, 1, 0] = 3.0 * A_S                                          # DC offset beyond the band
+    d[0, 1, 1], d[0, 1, 4] = 0.4 * A_S, 0.2 * A_S                   # sticking oscillation
+    dt = f.synth(d[0, 1])
+    r = MU * N0 / KT
+    lo, hi = np.max(dt - r), np.min(dt + r)
+    assert lo < hi and not lo <= 0.0 <= hi                          # stuck, zero outside band
+    expected = KT * (dt - np.clip(0.0, lo, hi))
+    base = contact_aft(c, f, d, jacobian=False).tangential[0, 0]
+    assert np.allclose(base, expected, rtol=0, atol=1e-12 * KT * A_S)
+    for shift in (17, 64, 101):                                     # start the period elsewhere
+        ds = d.copy()
+        ds[0, 1] = f.analyse(np.roll(dt, -shift))
+        shifted = contact_aft(c, f, ds, jacobian=False).tangential[0, 0]
+        assert np.allclose(shifted, np.roll(base, -shift), rtol=0, atol=1e-9 * KT * A_S)

@@ -63,3 +63,22 @@ def test_forced_response_failure_is_recorded():
     frf = forced_response(st, c, 10.0, 100.0, 140.0, H=1, max_iter=0, tol=1e-14)
     assert frf.status == Status.NO_CONVERGENCE and frf.reason
     assert frf.omega.max() < 140.0
+
+
+def test_backbone_does_not_depend_on_the_continuation_path():
+    """Every evaluation marches the sliders from the static state, so a grid point is the same
+    solution whatever steps led to it. Two step controls (23 and 234 accepted points) agree to
+    the solver tolerance at every grid point, through stick, microslip and gross slip."""
+    from ringdamper.hbm.continuation import StepControl
+
+    st, c = multi_dof(H=3)
+    _, phi = st.stuck_modes(c.stuck_stiffness().ravel())
+    alpha = linear_limit(st, c, phi[:, 2]) * np.logspace(-0.5, 1.5, 9)
+    a, b = (epmc(st, c, alpha, H=3, nt=64, tol=1e-11, mode=2,
+                 steps=StepControl(initial=s0, minimum=1e-5, maximum=smax))
+            for s0, smax in ((0.2, 0.5), (0.01, 0.02)))
+    assert np.all(a.status == Status.CONVERGED) and np.all(b.status == Status.CONVERGED)
+    assert len(b.branch) > 5 * len(a.branch)
+    assert np.allclose(a.omega, b.omega, rtol=1e-10)
+    assert np.allclose(a.xi, b.xi, rtol=0, atol=1e-10 * a.omega[0])
+    assert np.max(a.zeta) > 1e-2                                    # friction did act

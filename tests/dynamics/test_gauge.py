@@ -83,3 +83,56 @@ def test_free_ring_in_cyclic_toy_is_flagged():
     bb = epmc(st, c, np.geomspace(1e-4, 3e-2, 8), H=1, nt=60, mode=0)
     assert bb.status[0] == Status.CONVERGED
     assert bb.status[-1] == Status.DRIFT
+
+
+def _free_ring_model():
+    from ringdamper.hbm.condensed import CondensedHBM
+
+    st, c, _ = cyclic_structure(H=2, ring_support=0.0)
+    return CondensedHBM(st, c, 2, 32)
+
+
+def test_pinned_direction_stays_gauged_and_its_jacobian_is_exact():
+    """A pinned rigid-body direction (one of the free ring's two) is gauged even while a stuck
+    contact would hold it: its row is ``gᵀ(η_Z − η_ref)``, the dropped equilibrium is the drift,
+    the other direction keeps its equilibrium, and the Jacobian matches central differences."""
+    from .test_jacobians import _check_problem
+
+    model = _free_ring_model()
+    assert model.zero_modes.size == 2
+    rng = np.random.default_rng(4)
+    y = np.zeros(model.n_core)
+    y[:model.n_d] = 1e-5 * rng.standard_normal(model.n_d)          # stuck: both directions held
+    y[model.n_d:] = 1e-5 * rng.standard_normal(model.n_core - model.n_d)
+    held = model.evaluate(y, 100.0, 1.0)
+    assert held.drift.size == 0
+    g = np.array([[0.6], [0.8]])
+    model.eta_ref = np.array([0.1, -0.2])
+    assert model.pin(g) and not model.pin(-2.0 * g)                  # a direction is pinned once
+    ev = model.evaluate(y, 100.0, 1.0)
+    rows = model.eta_slices[0].start + model.zero_modes
+    assert ev.drift.size == 1 and np.allclose(ev.gauge, g)
+    h = np.array([[0.8], [-0.6]])                                  # the held complement
+    assert ev.r[rows[1]] == pytest.approx((g.T @ (y[rows] - model.eta_ref)).item(), rel=1e-12)
+    assert abs(ev.r[rows[0]]) == pytest.approx(abs((h.T @ held.r[rows]).item()), rel=1e-9)
+    assert ev.drift[0] == pytest.approx((g.T @ held.r[rows]).item(), rel=1e-9)
+    prob = EPMCProblem(model, phase_index=model.slot_index(1, True, 1))
+    z = np.r_[y, 100.0, 1.0]
+    _check_problem(lambda x: prob.fun(x, np.log(1e-3))[:2], z, prob.scale(z))
+
+
+def test_lost_hold_is_pinned_after_a_failed_step():
+    """Directions whose hold an evaluation found lost are pinned by ``pin_seen`` (called by the
+    continuation after a failed corrector), and forgotten at the next accepted point otherwise."""
+    model = _free_ring_model()
+    rng = np.random.default_rng(8)
+    y = np.zeros(model.n_core)
+    y[:model.n_d] = 1e-2 * rng.standard_normal(model.n_d)          # gross slip: hold lost
+    slip = model.evaluate(y, 100.0, 1.0)
+    assert slip.drift.size == 2 and model.seen.shape[1] == 2
+    assert model.pin_seen() and model.pinned.shape[1] == 2
+    assert not model.pin_seen()                                    # nothing new
+    other = _free_ring_model()
+    other.evaluate(y, 100.0, 1.0)
+    other.accept(np.zeros(other.n_core), held := other.evaluate(1e-9 * y, 100.0, 1.0))
+    assert held.drift.size == 0 and other.pinned.shape[1] == 0 and other.seen.shape[1] == 0

@@ -1,5 +1,6 @@
-"""Predictor–corrector continuation: natural parameter (log α for the dNNM) and pseudo-arc-length
-(excitation frequency for the forced response), after Allgower & Georg (2003).
+"""Predictor–corrector continuation: natural parameter (log α for the dNNM), pseudo-arc-length
+(excitation frequency for the forced response) and their combination (natural, then arc length
+past a fold in the parameter, :func:`natural_then_arclength`), after Allgower & Georg (2003).
 
 Common rules: tangent predictor, Newton corrector reusing the last factorisation while it
 contracts (:func:`ringdamper.hbm.newton.newton`), step grown ×1.5 when the corrector's effort
@@ -159,7 +160,8 @@ class ArclengthResult:
 def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.ndarray,
               steps: StepControl, tol: float, max_iter: int, stop: Callable[[np.ndarray], bool],
               max_points: int, max_angle: float = np.pi / 4, corner: float = 100.0,
-              rescale: Callable | None = None, accept: Callable | None = None) -> ArclengthResult:
+              rescale: Callable | None = None, accept: Callable | None = None,
+              on_failure: Callable[[], bool] | None = None) -> ArclengthResult:
     """Pseudo-arc-length continuation of ``r(z) = 0`` (one fewer equation than unknowns).
 
     ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)``, ``J`` of shape ``(n−1, n)``; ``z0`` a
@@ -172,7 +174,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
     ``stop(z)`` is true. ``rescale(z, scale) -> scale`` may update the scaling after every
     accepted point (the tangent is carried over in unscaled form); ``accept(z, payload)`` is
     called on the start and every accepted point (history updates). ``scales`` in the result holds
-    the scaling in force at every point.
+    the scaling in force at every point. ``on_failure()`` as in :func:`natural`.
     """
     r0, J0, trivial0, n_core0, payload0 = fun(z0, True)
     if accept is not None:
@@ -211,6 +213,8 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
                 t, scale = t / np.linalg.norm(t), new
             ds = steps.adapt(ds, res)
             continue
+        if on_failure is not None and on_failure():
+            continue
         ds *= 0.5
         if ds < steps.minimum:
             why = res.reason if not res.converged else "tangent turned or corrector jumped"
@@ -225,3 +229,79 @@ def _tangent(J, trivial, n_core, direction_u, scale):
     e[-1] = 1.0
     x = Factorization(np.vstack([J, direction_u / scale]), trivial, n_core).solve(e) / scale
     return x / np.linalg.norm(x)
+
+
+def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
+                           scale: Callable, steps: StepControl, tol: float, max_iter: int,
+                           accept: Callable | None = None, s_start: float | None = None,
+                           on_failure: Callable[[], bool] | None = None,
+                           max_points: int = 400) -> NaturalResult:
+    """:func:`natural`, and where it stops, pseudo-arc-length continuation of ``r(z, s) = 0`` in
+    ``x = [z, s]`` from its last accepted point, oriented towards increasing ``s``: it follows the
+    branch through folds in ``s`` (where natural continuation must stop). Each remaining grid
+    value is solved exactly, at fixed ``s``, from the secant interpolant between the two branch
+    points that first bracket it (the first crossing along the branch; after a fold the branch
+    may cross a value three times), and accepted only if the solution stays within the bracket's
+    distance of the interpolant (no branch jump). Points keep statuses and reasons as in
+    :func:`natural`; ``branch`` holds every accepted point of both parts (``s`` then not
+    monotone). Arc length is measured on ``[z/(√n·scale(z)), s]``: the RMS relative change of
+    the unknowns and the change of ``s`` weigh alike."""
+    out = natural(fun, dfun_ds, z0, grid, scale, steps, tol, max_iter, accept=accept,
+                  s_start=s_start, on_failure=on_failure)
+    todo = np.flatnonzero(out.status == Status.NO_CONVERGENCE)
+    if not todo.size or not out.branch:                  # complete, or no start point
+        return out
+    k0 = int(todo[0])
+    first = out.branch[-1]
+    n = first.z.size
+    root_n = np.sqrt(n)
+
+    def fun_x(x, jac):
+        r, J, trivial, n_core, payload = fun(x[:-1], x[-1], jac)
+        Jx = np.hstack([J, dfun_ds(x[:-1], x[-1])[:, None]]) if jac else None
+        return r, Jx, trivial, n_core, payload
+
+    def rescale(x, sc):
+        return np.r_[root_n * scale(x[:-1]), 1.0]
+
+    nxt = [k0]
+    prev = [np.r_[first.z, first.s]]
+    why = [""]
+
+    def on_grid(x, payload):
+        """Accepted arc-length point: record it, then solve the grid values it passed."""
+        if accept is not None:
+            accept(x[:-1], payload)
+        if x is prev[0]:                                  # the start point, already recorded
+            return
+        out.branch.append(ContinuationPoint(x[-1], x[:-1], payload, 0))
+        xa = prev[0]
+        while nxt[0] < grid.size and xa[-1] < grid[nxt[0]] <= x[-1]:
+            k, sk = nxt[0], grid[nxt[0]]
+            w = (sk - xa[-1]) / (x[-1] - xa[-1])
+            guess = (1 - w) * xa[:-1] + w * x[:-1]
+            res = newton(lambda zz, jj: fun(zz, sk, jj), guess, scale, tol, max_iter)
+            sc = scale(guess)
+            near = np.max(np.abs(res.z - guess) / sc) <= max(
+                np.max(np.abs(x[:-1] - xa[:-1]) / sc), steps.jump_floor)
+            if not (res.converged and near):
+                why[0] = (f"re-solve at grid s={sk:.6g}: "
+                          + (res.reason if not res.converged else "jumped off the branch"))
+                nxt[0] = grid.size                           # stop; statuses set below
+                break
+            _record(out, k, sk, res, None)
+            nxt[0] += 1
+        prev[0] = x
+
+    x0 = prev[0]
+    direction = np.zeros(n + 1)
+    direction[-1] = 1.0
+    run = arclength(fun_x, x0, direction, rescale(x0, None), steps, tol, max_iter,
+                    stop=lambda x: nxt[0] >= grid.size, max_points=max_points,
+                    rescale=rescale, accept=on_grid, on_failure=on_failure)
+    unfilled = [j for j in range(k0, grid.size) if out.points[j] is None]
+    for j in unfilled:
+        out.status[j] = Status.NO_CONVERGENCE if j == unfilled[0] else Status.NOT_REACHED
+        out.reason[j] = (why[0] or f"arc length from s={first.s:.6g}: {run.reason}"
+                         if j == unfilled[0] else "continuation stopped")
+    return out

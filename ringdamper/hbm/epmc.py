@@ -24,7 +24,7 @@ import numpy as np
 
 from ringdamper.contact.friction import FrictionContacts
 from ringdamper.hbm.condensed import CondensedHBM, pole_modes
-from ringdamper.hbm.continuation import Status, StepControl, natural
+from ringdamper.hbm.continuation import Status, StepControl, natural_then_arclength
 from ringdamper.hbm.fourier import default_nt
 from ringdamper.hbm.structure import Structure
 
@@ -148,9 +148,9 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
         alpha_start = min(alpha[0], 0.5 * linear_limit(structure, contacts, phi))
     z0, phase_index = _initial_guess(model, phi, omega0, alpha_start)
     problem = EPMCProblem(model, phase_index, drift_tol)
-    run = natural(problem.fun, problem.dfun_ds, z0, np.log(alpha), problem.scale, steps, tol,
-                  max_iter, accept=problem.accept, s_start=np.log(alpha_start),
-                  on_failure=problem.on_failure)
+    run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log(alpha), problem.scale,
+                                 steps, tol, max_iter, accept=problem.accept,
+                                 s_start=np.log(alpha_start), on_failure=problem.on_failure)
     return _collect(run, model, alpha, problem, time.perf_counter() - t0)
 
 

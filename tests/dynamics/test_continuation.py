@@ -47,7 +47,8 @@ def test_impossible_newton_budget_is_recorded():
 
 def test_branch_point_stops_with_status():
     """The lowest mode of ``multi_dof`` meets a symmetry-breaking bifurcation (even harmonics)
-    that natural continuation in α cannot cross: the run stops there with statuses."""
+    that neither natural continuation in α nor the arc-length fallback crosses: the run stops
+    there with statuses."""
     st, c = multi_dof(H=3)
     from ringdamper.contact.friction import FrictionContacts
     c = FrictionContacts(kn=c.kn, kt=np.array([1e5, 8e4]), mu=0.3, N0=c.N0, gap=c.gap)
@@ -82,3 +83,29 @@ def test_backbone_does_not_depend_on_the_continuation_path():
     assert np.allclose(a.omega, b.omega, rtol=1e-10)
     assert np.allclose(a.xi, b.xi, rtol=0, atol=1e-10 * a.omega[0])
     assert np.max(a.zeta) > 1e-2                                    # friction did act
+
+
+def test_fold_in_alpha_is_passed_by_arc_length():
+    """A free mass on an oscillator whose normal load follows the motion (``free_body`` with
+    normal coupling): past the loss of stick the backbone folds in α (α rises, falls back by
+    15 %, rises again) where natural continuation must stop. The arc-length fallback follows
+    the fold; every grid point is reached, its solution satisfies the residual at its exact α,
+    and it lies on the first crossing of the branch."""
+    from ringdamper.hbm.epmc import EPMCProblem
+
+    from .systems import free_body
+
+    st, c = free_body(H=3, normal_coupling=0.3)
+    alpha = 1e-3 * np.logspace(-1.5, 0.25, 8)
+    bb = epmc(st, c, alpha, H=3, nt=64, tol=1e-12)
+    assert np.all(np.isin(bb.status, (Status.CONVERGED, Status.DRIFT)))
+    a = bb.branch[:, 0]
+    assert np.any(np.diff(a) < 0)                                    # the fold was followed
+    top = np.argmax(a[:np.argmax(np.diff(a) < 0) + 1])
+    assert a[top] < alpha[-1] and np.min(a[top:]) < 0.9 * a[top]
+    problem = EPMCProblem(bb.model, bb.phase_index)
+    for i in (len(alpha) - 1,):                                      # the point past the fold
+        z = bb.state(i)
+        r = problem.fun(z, np.log(alpha[i]), False)[0]
+        assert abs(r[-2]) < 1e-10 and np.max(np.abs(r[:-2])) < 1e-8 * np.max(np.abs(z[:-2]))
+    assert bb.omega[-1] < 0.7 * bb.omega[0]                          # far along the branch

@@ -9,11 +9,17 @@ representation of the reduced model, so the condensation of ``hbm.condensed`` su
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 import xarray as xr
 
 from .contact.friction import FrictionContacts
+from .eebm import eebm
+from .hbm.epmc import epmc
 from .hbm.structure import HarmonicData, Structure
+from .io import variable
+from .normalisation import normalised_frequency
 
 
 def structure_from_reduced(reduced: xr.Dataset, n_harmonics: int) -> Structure:
@@ -60,13 +66,6 @@ def amplitude_grid(dnnm_cfg: dict) -> np.ndarray:
 def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: float,
              omega_stuck_default: float) -> xr.Dataset:
     """Backbone (EPMC) of the mode nearest ``target_hz`` and its E-EBM, as the dnnm.nc dataset."""
-    import time
-
-    from .eebm import eebm
-    from .hbm.epmc import epmc
-    from .io import variable
-    from .modal_stage import PAPER_NORMALISED_FREQUENCY
-
     cfg = config["dnnm"]
     start = time.perf_counter()
     structure = structure_from_reduced(reduced, cfg["n_harmonics"])
@@ -81,7 +80,7 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
                                     "modal amplitude alpha (mass-normalised fundamental)"),
               "pair": variable("pair", np.arange(m), "1", "contact pair index")}
     data = {
-        "omega0": variable("amplitude", PAPER_NORMALISED_FREQUENCY * res.omega / omega_stuck_default,
+        "omega0": variable("amplitude", normalised_frequency(res.omega, omega_stuck_default),
                            "1", "normalised resonant frequency 2.195 omega / omega_stuck,default"),
         "frequency": variable("amplitude", res.frequency, "Hz", "resonant frequency"),
         "zeta": variable("amplitude", res.zeta, "1", "modal damping ratio of the dNNM"),
@@ -113,8 +112,6 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
 
 def failed_dnnm(config: dict, kappa, reason: str, status: int = 99) -> xr.Dataset:
     """dnnm.nc of a geometry whose chain failed: every point carries ``status`` and the reason."""
-    from .io import variable
-
     alpha = amplitude_grid(config["dnnm"])
     nan = np.full(len(alpha), np.nan)
     names = {"omega0": ("1", "normalised resonant frequency"), "frequency": ("Hz", "resonant frequency"),

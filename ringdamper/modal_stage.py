@@ -19,8 +19,8 @@ from .geometry.sector import build_sector
 from .io import variable
 from .modal import (FamilyClassifier, campbell, cyclic_modes, eo_crossing, family_frequency,
                     labelled_modes)
+from .normalisation import normalised_frequency
 
-PAPER_NORMALISED_FREQUENCY = 2.195
 NO_STATIC_STATE = "all pairs stuck (linearised kn, kt springs): static contact state not used"
 
 
@@ -71,7 +71,7 @@ def run_modal_stage(config: dict, in_contact=None) -> ModalResults:
                  "mode": variable("mode", np.arange(modal["n_modes"]), "1", "mode index within the ND")}
     nd_ds = xr.Dataset(
         {"frequency": variable(("nd", "mode"), freq, "Hz", "natural frequency at operating speed"),
-         "omega0": variable(("nd", "mode"), PAPER_NORMALISED_FREQUENCY * freq / reference_hz, "1",
+         "omega0": variable(("nd", "mode"), normalised_frequency(freq, reference_hz), "1",
                             "normalised frequency 2.195 f / f_stuck,default"),
          "family": variable(("nd", "mode"), labels, "1", "mode family (1B, 1T, 2B, 1D, 2D, ...)"),
          "blade_energy_fraction": variable(("nd", "mode"), blade, "1",

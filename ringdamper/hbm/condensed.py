@@ -40,6 +40,15 @@ the explicit gauge ``η_Z = η_ref`` instead (``η_ref``: the last determined po
 caller), and the dropped equilibrium is returned as ``drift``: if non-zero at a solution, no
 periodic solution exists (the free body ratchets).
 
+Soft hold: "vanishes" means below ``gauge_tol`` (default 1 %) of one pair's stiffness times
+``‖Ψ_Z‖₂``. Once the whole interface slips, a ring whose contact normals are tilted (κ1) is still
+held along its rotation by the normal springs (the wedge effect), at ~2 % of its stuck hold. Its
+mean position is then set by a spring that soft: near the release of the last stuck pairs it
+slides by millimetres (far outside the small-displacement contact kinematics about the static
+state) and the branch meets a singular point (σ_min/σ_max ≈ 3e-11 of the augmented Jacobian)
+that no continuation passed on 6 of the first 40 campaign rings. Treating such a direction as
+free (gauged, then pinned) removes it.
+
 Pinning: a direction that lost its hold at an accepted point, or whose hold Newton found and
 lost again within a failed step (:meth:`CondensedHBM.pin_seen`), stays gauged for the rest of
 the branch (:meth:`CondensedHBM.pin`). Near the loss of hold the last holding pair cannot carry
@@ -78,6 +87,13 @@ class CoreEval:
     drift: np.ndarray
     gauge: np.ndarray
 
+    def take_jacobian(self) -> np.ndarray | None:
+        """The Jacobian, released from this evaluation: evaluations are kept as the payload of
+        every accepted continuation point, and a dense n_core² Jacobian each (18 MB on a real
+        ring at H = 3) added up to gigabytes."""
+        J, self.J = self.J, None
+        return J
+
 
 class CondensedHBM:
     """Condensed HBM of one structure, contact set and harmonic truncation.
@@ -85,12 +101,14 @@ class CondensedHBM:
     ``explicit[h]``: indices of the modes of harmonic h kept as unknowns (the zero modes of
     harmonic 0 are always added). ``damping[h]``: modal damping coefficients ``c_r`` (None: no
     structural damping, as in the dNNM). ``forced``: include the forcing vectors scaled by
-    ``gamma``.
+    ``gamma``. ``gauge_tol``: a rigid-body direction whose DC contact stiffness (singular value
+    of ``K_c Ψ_Z``) is below ``gauge_tol × max(kn, kt) × ‖Ψ_Z‖₂`` counts as not held (module
+    docstring, *soft hold*).
     """
 
     def __init__(self, structure: Structure, contacts: FrictionContacts, H: int, nt: int,
                  explicit=None, damping=None, forced: bool = False, gamma: float = 0.0,
-                 gauge_tol: float = 1e-9):
+                 gauge_tol: float = 1e-2):
         if H > structure.H_max:
             raise ValueError(f"structure has harmonics up to {structure.H_max}, H={H} requested")
         if contacts.npairs != structure.npairs:

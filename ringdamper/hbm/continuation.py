@@ -6,7 +6,9 @@ Common rules: tangent predictor, Newton corrector reusing the last factorisation
 contracts (:func:`ringdamper.hbm.newton.newton`), step grown ×1.5 when the corrector's effort
 (Jacobians + chord iterations / 12) is at most 1.5 and halved above 4, halved on failure, and a
 corrector that moves farther than its own predictor step (or than ``jump_floor`` in the scaled
-norm) is rejected as a branch jump. Failures never raise: they end the run with a status.
+norm) is rejected as a branch jump; ``jump_mask`` restricts that test to the unknowns that
+identify the branch (the EPMC leaves out the mean values, which move freely where the last
+contact holding a rigid-body motion lets go). Failures never raise: they end the run with a status.
 """
 from __future__ import annotations
 
@@ -71,17 +73,19 @@ class NaturalResult:
     branch: list = field(default_factory=list)
 
 
-def _blocked(z_new, z_pred, z_old, scale, floor):
+def _blocked(z_new, z_pred, z_old, scale, floor, mask=None):
     sc = scale(z_old)
-    corr = np.max(np.abs(z_new - z_pred) / sc)
-    step = np.max(np.abs(z_pred - z_old) / sc)
+    keep = slice(None) if mask is None else mask
+    corr = np.max(np.abs(z_new - z_pred)[keep] / sc[keep])
+    step = np.max(np.abs(z_pred - z_old)[keep] / sc[keep])
     return corr > max(step, floor)
 
 
 def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
             scale: Callable, steps: StepControl, tol: float, max_iter: int,
             accept: Callable | None = None, s_start: float | None = None,
-            on_failure: Callable[[], bool] | None = None) -> NaturalResult:
+            on_failure: Callable[[], bool] | None = None,
+            jump_mask: np.ndarray | None = None) -> NaturalResult:
     """Continuation in the scalar parameter ``s`` from ``s_start`` (default ``grid[0]``; ``z0``
     is the guess there) over the increasing ``grid``, landing exactly on every grid value (so grid
     outputs are converged solutions, not interpolants).
@@ -90,6 +94,7 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
     ``accept(z, payload)`` is called on every accepted point (e.g. to update a gauge);
     ``on_failure()`` after a failed corrector: if it returns True the problem has changed (e.g. a
     rigid-body direction was pinned) and the same step is tried again before it is halved.
+    ``jump_mask``: unknowns the branch-jump test looks at (default all).
     """
     grid = np.asarray(grid, float)
     n = grid.size
@@ -118,7 +123,7 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
         z_pred = z + (s_t - s) * tangent
         res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale, tol, max_iter,
                      factorization=last.factorization)
-        if res.converged and not _blocked(res.z, z_pred, z, scale, steps.jump_floor):
+        if res.converged and not _blocked(res.z, z_pred, z, scale, steps.jump_floor, jump_mask):
             s, z, last = s_t, res.z, res
             out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
             if on_grid:
@@ -161,7 +166,8 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
               steps: StepControl, tol: float, max_iter: int, stop: Callable[[np.ndarray], bool],
               max_points: int, max_angle: float = np.pi / 4, corner: float = 100.0,
               rescale: Callable | None = None, accept: Callable | None = None,
-              on_failure: Callable[[], bool] | None = None) -> ArclengthResult:
+              on_failure: Callable[[], bool] | None = None,
+              jump_mask: np.ndarray | None = None) -> ArclengthResult:
     """Pseudo-arc-length continuation of ``r(z) = 0`` (one fewer equation than unknowns).
 
     ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)``, ``J`` of shape ``(n−1, n)``; ``z0`` a
@@ -174,7 +180,8 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
     ``stop(z)`` is true. ``rescale(z, scale) -> scale`` may update the scaling after every
     accepted point (the tangent is carried over in unscaled form); ``accept(z, payload)`` is
     called on the start and every accepted point (history updates). ``scales`` in the result holds
-    the scaling in force at every point. ``on_failure()`` as in :func:`natural`.
+    the scaling in force at every point. ``on_failure()`` and ``jump_mask`` as in
+    :func:`natural`.
     """
     r0, J0, trivial0, n_core0, payload0 = fun(z0, True)
     if accept is not None:
@@ -193,7 +200,8 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
             return np.r_[r, plane @ (zz - zp)], Jb, trivial, n_core, payload
 
         res = newton(bordered, zp, lambda _: scale, tol, max_iter, factorization=last_fac)
-        ok = res.converged and not _blocked(res.z, zp, z, lambda _: scale, steps.jump_floor)
+        ok = res.converged and not _blocked(res.z, zp, z, lambda _: scale, steps.jump_floor,
+                                            jump_mask)
         if ok:                                       # secant tangent of the accepted step
             x = (res.z - z) / scale
             t_new = x / np.linalg.norm(x)
@@ -235,6 +243,7 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
                            scale: Callable, steps: StepControl, tol: float, max_iter: int,
                            accept: Callable | None = None, s_start: float | None = None,
                            on_failure: Callable[[], bool] | None = None,
+                           jump_mask: np.ndarray | None = None,
                            max_points: int = 400) -> NaturalResult:
     """:func:`natural`, and where it stops, pseudo-arc-length continuation of ``r(z, s) = 0`` in
     ``x = [z, s]`` from its last accepted point, oriented towards increasing ``s``: it follows the
@@ -247,7 +256,7 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
     monotone). Arc length is measured on ``[z/(√n·scale(z)), s]``: the RMS relative change of
     the unknowns and the change of ``s`` weigh alike."""
     out = natural(fun, dfun_ds, z0, grid, scale, steps, tol, max_iter, accept=accept,
-                  s_start=s_start, on_failure=on_failure)
+                  s_start=s_start, on_failure=on_failure, jump_mask=jump_mask)
     todo = np.flatnonzero(out.status == Status.NO_CONVERGENCE)
     if not todo.size or not out.branch:                  # complete, or no start point
         return out
@@ -281,9 +290,10 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
             w = (sk - xa[-1]) / (x[-1] - xa[-1])
             guess = (1 - w) * xa[:-1] + w * x[:-1]
             res = newton(lambda zz, jj: fun(zz, sk, jj), guess, scale, tol, max_iter)
-            sc = scale(guess)
-            near = np.max(np.abs(res.z - guess) / sc) <= max(
-                np.max(np.abs(x[:-1] - xa[:-1]) / sc), steps.jump_floor)
+            keep = slice(None) if jump_mask is None else jump_mask
+            sc = scale(guess)[keep]
+            near = np.max(np.abs(res.z - guess)[keep] / sc) <= max(
+                np.max(np.abs(x[:-1] - xa[:-1])[keep] / sc), steps.jump_floor)
             if not (res.converged and near):
                 why[0] = (f"re-solve at grid s={sk:.6g}: "
                           + (res.reason if not res.converged else "jumped off the branch"))
@@ -298,7 +308,8 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
     direction[-1] = 1.0
     run = arclength(fun_x, x0, direction, rescale(x0, None), steps, tol, max_iter,
                     stop=lambda x: nxt[0] >= grid.size, max_points=max_points,
-                    rescale=rescale, accept=on_grid, on_failure=on_failure)
+                    rescale=rescale, accept=on_grid, on_failure=on_failure,
+                    jump_mask=None if jump_mask is None else np.r_[jump_mask, True])
     unfilled = [j for j in range(k0, grid.size) if out.points[j] is None]
     for j in unfilled:
         out.status[j] = Status.NO_CONVERGENCE if j == unfilled[0] else Status.NOT_REACHED

@@ -90,7 +90,7 @@ class EPMCProblem:
             return r, None, None, m.n_core, ev
         n2, g, d_w, d_x = m.modal_norm2(ev, omega, xi)
         J = np.zeros((self.n, self.n))
-        J[:m.n_core, :m.n_core] = ev.J
+        J[:m.n_core, :m.n_core] = ev.take_jacobian()
         J[:m.n_core, -2], J[:m.n_core, -1] = ev.dr_domega, ev.dr_dxi
         J[-2, :m.n_core], J[-2, -2], J[-2, -1] = g / (2 * n2), d_w / (2 * n2), d_x / (2 * n2)
         J[-1, self.phase_index] = 1.0
@@ -107,6 +107,18 @@ class EPMCProblem:
 
     def accept(self, z, ev):
         self.model.accept(z[:-2], ev)
+
+    def jump_mask(self) -> np.ndarray:
+        """Unknowns of the branch-jump test: all but the mean (harmonic-0) contact slots and
+        rigid-body/explicit modal coordinates. Where the last pairs holding the ring's rigid
+        motion let go, its mean position (and with it every DC slot) moves by much more than the
+        predictor for a tiny change of α while ω, ξ and the harmonics change smoothly; a switch
+        to another branch shows in those."""
+        m = self.model
+        mask = np.ones(self.n, bool)
+        mask[:m.p] = False                                  # slot 0 (mean) of every coordinate
+        mask[m.eta_slices[0]] = False
+        return mask
 
     def on_failure(self) -> bool:
         """After a failed step: pin the rigid-body directions whose hold was lost on the way
@@ -150,7 +162,8 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     problem = EPMCProblem(model, phase_index, drift_tol)
     run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log(alpha), problem.scale,
                                  steps, tol, max_iter, accept=problem.accept,
-                                 s_start=np.log(alpha_start), on_failure=problem.on_failure)
+                                 s_start=np.log(alpha_start), on_failure=problem.on_failure,
+                                 jump_mask=problem.jump_mask())
     return _collect(run, model, alpha, problem, time.perf_counter() - t0)
 
 

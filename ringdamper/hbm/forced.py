@@ -22,14 +22,14 @@ class ForcedProblem:
 
     def fun(self, z: np.ndarray, jacobian: bool = True):
         ev = self.model.evaluate(z[:-1], z[-1], 0.0, jacobian)
-        J = np.hstack([ev.J, ev.dr_domega[:, None]]) if jacobian else None
+        J = np.hstack([ev.take_jacobian(), ev.dr_domega[:, None]]) if jacobian else None
         return ev.r, J, ev.trivial, self.model.n_core, ev
 
     def at_frequency(self, omega: float):
         """Residual of ``y`` alone at fixed ω (square)."""
         def fun(y, jacobian=True):
             ev = self.model.evaluate(y, omega, 0.0, jacobian)
-            return ev.r, ev.J, ev.trivial, self.model.n_core, ev
+            return ev.r, ev.take_jacobian(), ev.trivial, self.model.n_core, ev
         return fun
 
     def scale(self, z: np.ndarray) -> np.ndarray:

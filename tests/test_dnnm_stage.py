@@ -34,7 +34,7 @@ def test_linear_limit_and_energy_balance(chain):
     ds = run_dnnm(reduced, static, cfg, target_hz, w_stuck)
     check_contract(ds)
     ok = np.isin(ds.status.values, (0, 3))
-    assert ok[0] and ok.sum() >= 4
+    assert np.all(ok), ds.status.values            # the whole amplitude grid is reached
     # linear limit: stuck frequency, no damping, normalised frequency 2.195 exactly
     assert ds.frequency.values[0] * 2 * np.pi == pytest.approx(w_stuck, rel=1e-6)
     assert ds.omega0.values[0] == pytest.approx(2.195, rel=1e-6)

@@ -2,6 +2,7 @@
 with every grid point converged and no gap or reversal in α; impossible requests end with a
 recorded status, never an exception."""
 import numpy as np
+import pytest
 
 from ringdamper.frf import forced_response
 from ringdamper.hbm.continuation import Status
@@ -109,3 +110,26 @@ def test_fold_in_alpha_is_passed_by_arc_length():
         r = problem.fun(z, np.log(alpha[i]), False)[0]
         assert abs(r[-2]) < 1e-10 and np.max(np.abs(r[:-2])) < 1e-8 * np.max(np.abs(z[:-2]))
     assert bb.omega[-1] < 0.7 * bb.omega[0]                          # far along the branch
+
+
+def test_jump_test_can_leave_out_unknowns_that_move_freely():
+    """``r = [z0 − s, z1 − 10·[s > 0.3]]``: z0 follows s smoothly, z1 (standing for the mean
+    position of a ring that lets go) jumps at s = 0.3. The jump test stops natural continuation
+    there, unless ``jump_mask`` leaves z1 out; with the mask every grid value is reached."""
+    from ringdamper.hbm.continuation import StepControl, natural
+
+    def fun(z, s, jac):
+        r = np.array([z[0] - s, z[1] - 10.0 * (s > 0.3)])
+        return r, np.eye(2) if jac else None, None, 2, None
+
+    def dfun_ds(z, s):
+        return np.array([-1.0, 0.0])
+
+    grid = np.linspace(0.0, 1.0, 6)
+    kw = dict(scale=lambda z: np.ones(2), steps=StepControl(0.1, 1e-4, 0.2), tol=1e-12,
+              max_iter=5)
+    plain = natural(fun, dfun_ds, np.zeros(2), grid, **kw)
+    masked = natural(fun, dfun_ds, np.zeros(2), grid, jump_mask=np.array([True, False]), **kw)
+    assert plain.status[2] == Status.NO_CONVERGENCE and "jumped" in plain.reason[2]
+    assert np.all(masked.status == Status.CONVERGED)
+    assert masked.points[-1].z == pytest.approx([1.0, 10.0])

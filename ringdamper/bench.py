@@ -67,7 +67,9 @@ def _static_chain(config: dict) -> dict:
 
 
 def _geometry_chain(config: dict) -> dict:
-    """The per-geometry chain on the default ring, one core: mesh -> static -> reduced -> dnnm."""
+    """The per-geometry chain on the default ring, one core: mesh -> static -> reduced -> dnnm
+    (H = 1, the campaign's H and 5), and one forced-response curve (H = 1) through the E-EBM
+    point of largest damping, with its peak against the E-EBM prediction."""
     from .dnnm_stage import contacts_from_static, run_dnnm, structure_from_reduced, target_stuck_frequency
     from .fem.model import build_model
     from .geometry.sector import build_sector
@@ -94,7 +96,8 @@ def _geometry_chain(config: dict) -> dict:
     contacts = contacts_from_static(static, config["contact"], config["dnnm"]["friction_law"])
     w_default = target_stuck_frequency(structure, contacts, target_hz)
     out = {}
-    for H in sorted({1, config["dnnm"]["n_harmonics"]}):
+    backbones = {}
+    for H in sorted({1, config["dnnm"]["n_harmonics"], 5}):
         cfg = {**config, "dnnm": {**config["dnnm"], "n_harmonics": H,
                                   "n_time_samples": max(config["dnnm"]["n_time_samples"], 4 * H + 4)}}
         t = time.perf_counter()
@@ -102,10 +105,32 @@ def _geometry_chain(config: dict) -> dict:
         out[f"dnnm_H{H}_s"] = time.perf_counter() - t
         out[f"dnnm_H{H}_status_counts"] = np.bincount(ds.status.values.astype(int), minlength=5).tolist()
         out[f"dnnm_H{H}_zeta_max"] = float(np.nanmax(ds.zeta.values))
+        backbones[H] = ds
+    out["frf_H1"] = _default_frf(reduced, contacts, backbones[1], config)
     times.update(out)
     times["chain_default_H_s"] = (times["mesh_model_s"] + times["static_s"] + times["reduced_s"]
                                   + out[f"dnnm_H{config['dnnm']['n_harmonics']}_s"])
     return times
+
+
+def _default_frf(reduced, contacts, backbone, config: dict) -> dict:
+    """Forced response (H = 1, EO forcing γ of the E-EBM at the damping peak, ζs of the config)
+    over ±1.5 % around that point's frequency; time and peak / E-EBM amplitude."""
+    from .dnnm_stage import structure_from_reduced
+    from .frf import forced_response, resonance_peak
+
+    ok = np.isin(backbone.status.values, (0, 3))
+    mid = int(np.nanargmax(np.where(ok, backbone.zeta.values, np.nan)))
+    gamma = float(backbone.gamma.values[mid])
+    w0 = 2 * np.pi * float(backbone.frequency.values[mid])
+    t = time.perf_counter()
+    frf = forced_response(structure_from_reduced(reduced, 1), contacts, gamma, 0.985 * w0, 1.015 * w0,
+                          H=1, zeta_s=config["dnnm"]["structural_damping_ratio"])
+    peak = resonance_peak(frf)
+    return {"seconds": time.perf_counter() - t, "gamma_N": gamma, "points": len(frf.points),
+            "status": int(frf.status),
+            "peak_over_eebm": float(peak.q_peak / backbone.q_res_z.values[mid]),
+            "peak_frequency_over_eebm": float(peak.omega / w0)}
 
 
 def _dynamics_synthetic(config: dict) -> dict:

@@ -10,15 +10,21 @@ USABLE = (0, 3)  # converged (3: with the ring's mean rigid-body equilibrium unb
 
 
 def plot_backbones(datasets: dict, path) -> None:
-    """omega0, zeta (%) and gamma (N) against |q_res,z| (mm) for each ring (label -> dnnm dataset)."""
+    """omega0, zeta (%) and gamma (N) against |q_res,z| (mm) for each ring (label -> dnnm dataset);
+    open markers: points where the ring's mean rigid-body equilibrium is held by the gauge
+    (status 3, the ring would ratchet)."""
     fig, axes = plt.subplots(1, 3, figsize=(13, 4))
     for label, ds in datasets.items():
-        ok = np.isin(ds.status.values, USABLE)
+        status = ds.status.values
+        ok = np.isin(status, USABLE)
+        gauged = (status == 3)[ok]
         q = 1e3 * ds.q_res_z.values[ok]
         style = {"color": "k", "lw": 2} if label == "default" else {"lw": 1}
-        axes[0].plot(q, ds.omega0.values[ok], label=label, **style)
-        axes[1].plot(q, 100 * ds.zeta.values[ok], **style)
-        axes[2].plot(q, ds.gamma.values[ok], **style)
+        values = (ds.omega0.values[ok], 100 * ds.zeta.values[ok], ds.gamma.values[ok])
+        for k, (ax, v) in enumerate(zip(axes, values)):
+            line, = ax.plot(q, v, label=label if k == 0 else None, **style)
+            ax.plot(q[gauged], v[gauged], "o", mfc="none", ms=3, mew=0.6, color=line.get_color())
+    axes[1].set_title("open markers: ring held by the gauge (status 3, ratcheting)", fontsize=8)
     for ax, name in zip(axes, [r"$\omega_0$", r"$\zeta$ (%)", r"$\gamma$ (N)"]):
         ax.set_xlabel(r"$|q_{res,z}|$ (mm)")
         ax.set_ylabel(name)

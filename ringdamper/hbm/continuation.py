@@ -270,7 +270,8 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
         Jx = np.hstack([J, dfun_ds(x[:-1], x[-1])[:, None]]) if jac else None
         return r, Jx, trivial, n_core, payload
 
-    def rescale(x, sc):
+    def rescale(x, _previous=None):
+        """Arc-length scaling at ``x`` (the previous scaling is not needed)."""
         return np.r_[root_n * scale(x[:-1]), 1.0]
 
     nxt = [k0]
@@ -306,7 +307,7 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
     x0 = prev[0]
     direction = np.zeros(n + 1)
     direction[-1] = 1.0
-    run = arclength(fun_x, x0, direction, rescale(x0, None), steps, tol, max_iter,
+    run = arclength(fun_x, x0, direction, rescale(x0), steps, tol, max_iter,
                     stop=lambda x: nxt[0] >= grid.size, max_points=max_points,
                     rescale=rescale, accept=on_grid, on_failure=on_failure,
                     jump_mask=None if jump_mask is None else np.r_[jump_mask, True])

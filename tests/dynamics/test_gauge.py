@@ -136,3 +136,30 @@ def test_lost_hold_is_pinned_after_a_failed_step():
     other.evaluate(y, 100.0, 1.0)
     other.accept(np.zeros(other.n_core), held := other.evaluate(1e-9 * y, 100.0, 1.0))
     assert held.drift.size == 0 and other.pinned.shape[1] == 0 and other.seen.shape[1] == 0
+
+
+@pytest.mark.parametrize("tilt, gauged", [(0.004, True), (0.05, False)])
+def test_soft_hold_below_one_percent_counts_as_free(tilt, gauged):
+    """Free mass whose motion also presses on the contact normal with a small ``tilt`` (the
+    wedge effect of a tilted contact normal): in gross slip only the normal spring holds it, at
+    about ``tilt`` of the stiffness scale. Below ``gauge_tol`` (1 %) that soft hold counts as
+    free and the direction is gauged; above it, and with the former 1e-9, it stays held."""
+    from ringdamper.contact.friction import FrictionContacts
+    from ringdamper.hbm.condensed import CondensedHBM
+    from ringdamper.hbm.structure import Structure
+
+    M = np.diag([1.0, 0.3])
+    K = np.array([[4e4, 0.0], [0.0, 0.0]])
+    B = np.array([[0.0, tilt], [-1.0, 1.0], [0.0, 0.0]])
+    e = np.array([1.0, 0.0])
+    st = Structure.real(M, K, B, e, e, H=2)
+    c = FrictionContacts(kn=3e4, kt=3e4, mu=0.3, N0=50.0, gap=0.0)
+    y = np.zeros(5 * 3 + 1)
+    y[3 + 1] = 5e-3                                   # first-harmonic tangential slip ≫ μN0/kt
+    for tol, expect in ((None, gauged), (1e-9, False)):
+        model = CondensedHBM(st, c, 2, 32) if tol is None else CondensedHBM(st, c, 2, 32,
+                                                                          gauge_tol=tol)
+        assert model.zero_modes.size == 1
+        ev = model.evaluate(y, 150.0, 2.0)
+        assert np.all(np.abs(ev.aft.tangential[0, 0]) <= 0.3 * ev.aft.normal[0] + 1e-12)
+        assert (ev.drift.size == 1) == expect

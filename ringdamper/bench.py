@@ -116,21 +116,15 @@ def _geometry_chain(config: dict) -> dict:
 def _default_frf(reduced, contacts, backbone, config: dict) -> dict:
     """Forced response (H = 1, EO forcing γ of the E-EBM at the damping peak, ζs of the config)
     over ±1.5 % around that point's frequency; time and peak / E-EBM amplitude."""
+    from .bench_dynamics import time_frf
     from .dnnm_stage import structure_from_reduced
-    from .frf import forced_response, resonance_peak
 
     ok = np.isin(backbone.status.values, (0, 3))
     mid = int(np.nanargmax(np.where(ok, backbone.zeta.values, np.nan)))
-    gamma = float(backbone.gamma.values[mid])
-    w0 = 2 * np.pi * float(backbone.frequency.values[mid])
-    t = time.perf_counter()
-    frf = forced_response(structure_from_reduced(reduced, 1), contacts, gamma, 0.985 * w0, 1.015 * w0,
-                          H=1, zeta_s=config["dnnm"]["structural_damping_ratio"])
-    peak = resonance_peak(frf)
-    return {"seconds": time.perf_counter() - t, "gamma_N": gamma, "points": len(frf.points),
-            "status": int(frf.status),
-            "peak_over_eebm": float(peak.q_peak / backbone.q_res_z.values[mid]),
-            "peak_frequency_over_eebm": float(peak.omega / w0)}
+    return time_frf(structure_from_reduced(reduced, 1), contacts, float(backbone.gamma.values[mid]),
+                    2 * np.pi * float(backbone.frequency.values[mid]),
+                    float(backbone.q_res_z.values[mid]), 1,
+                    config["dnnm"]["structural_damping_ratio"], (0.985, 1.015))
 
 
 def _dynamics_synthetic(config: dict) -> dict:

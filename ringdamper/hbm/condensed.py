@@ -191,14 +191,10 @@ class CondensedHBM:
     def pin(self, basis: np.ndarray) -> bool:
         """Gauge the directions ``basis`` (columns in the zero-mode space) for good; True if that
         added a direction."""
-        merged = np.hstack([self.pinned, basis])
-        if not merged.shape[1]:
+        merged = _span(self.pinned, basis)
+        if merged.shape[1] == self.pinned.shape[1]:
             return False
-        u, sv, _ = np.linalg.svd(merged, full_matrices=False)
-        rank = int(np.sum(sv > 1e-8 * sv[0]))
-        if rank == self.pinned.shape[1]:
-            return False
-        self.pinned = u[:, :rank]
+        self.pinned = merged
         return True
 
     def pin_seen(self) -> bool:
@@ -351,7 +347,7 @@ class CondensedHBM:
                 sign = np.sign(Vt[np.arange(Vt.shape[0]), np.argmax(np.abs(Vt), 1)])
                 free = free @ (Vt.T * sign)                            # deterministic basis
             new, free = free[:, null], free[:, ~null]
-            self.seen = np.hstack([self.seen, new])
+            self.seen = _span(self.seen, new)
         gauge = np.hstack([pinned, new])
         if not gauge.shape[1]:
             return np.zeros(0), gauge
@@ -371,6 +367,16 @@ class CondensedHBM:
                 v[g] = 0.0
                 vec[rows] = v
         return drift, gauge
+
+
+def _span(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Orthonormal basis of the span of the columns of ``a`` and ``b`` (at most their row count,
+    so lost holds seen at every Newton iterate do not pile up)."""
+    merged = np.hstack([a, b])
+    if not merged.shape[1]:
+        return merged
+    u, sv, _ = np.linalg.svd(merged, full_matrices=False)
+    return u[:, :int(np.sum(sv > 1e-8 * sv[0]))]
 
 
 def _complement(basis: np.ndarray) -> np.ndarray:

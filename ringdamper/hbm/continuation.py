@@ -73,12 +73,15 @@ class NaturalResult:
     branch: list = field(default_factory=list)
 
 
+def _moved(a, b, sc, mask=None):
+    """Largest scaled difference ``max |a − b| / sc`` over the unknowns ``mask`` (default all)."""
+    keep = slice(None) if mask is None else mask
+    return np.max(np.abs(a - b)[keep] / sc[keep])
+
+
 def _blocked(z_new, z_pred, z_old, scale, floor, mask=None):
     sc = scale(z_old)
-    keep = slice(None) if mask is None else mask
-    corr = np.max(np.abs(z_new - z_pred)[keep] / sc[keep])
-    step = np.max(np.abs(z_pred - z_old)[keep] / sc[keep])
-    return corr > max(step, floor)
+    return _moved(z_new, z_pred, sc, mask) > max(_moved(z_pred, z_old, sc, mask), floor)
 
 
 def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
@@ -291,10 +294,9 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
             w = (sk - xa[-1]) / (x[-1] - xa[-1])
             guess = (1 - w) * xa[:-1] + w * x[:-1]
             res = newton(lambda zz, jj: fun(zz, sk, jj), guess, scale, tol, max_iter)
-            keep = slice(None) if jump_mask is None else jump_mask
-            sc = scale(guess)[keep]
-            near = np.max(np.abs(res.z - guess)[keep] / sc) <= max(
-                np.max(np.abs(x[:-1] - xa[:-1])[keep] / sc), steps.jump_floor)
+            sc = scale(guess)
+            near = _moved(res.z, guess, sc, jump_mask) <= max(
+                _moved(x[:-1], xa[:-1], sc, jump_mask), steps.jump_floor)
             if not (res.converged and near):
                 why[0] = (f"re-solve at grid s={sk:.6g}: "
                           + (res.reason if not res.converged else "jumped off the branch"))

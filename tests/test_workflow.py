@@ -53,7 +53,7 @@ def test_small_campaign_runs_and_agrees_with_the_library(tmp_path, small_config)
         ds = read_netcdf(out / "geometry" / gid / "static.nc")
         assert ds.attrs["status"] == 0, ds.attrs["reason"]
         assert np.all(ds.N0 >= 0) and np.all(ds.gap >= 0)
-        assert float((ds.N0 * ds.gap).max()) == 0.0
+        assert float((ds.N0 * ds.gap).max()) == 0.0        # exact complementarity by contract
         assert ds.attrs["equilibrium_residual"] < 1e-8
         assert ds.N0.attrs["units"] == "N" and "long_name" in ds.gap.attrs
     for gid in chosen:

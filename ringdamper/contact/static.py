@@ -81,12 +81,15 @@ MECHANISM_EPS = 1e-6  # relative stiffness given to open pairs when they leave a
 class StaticContactResult:
     """Static contact state. Arrays are per pair (m,) unless stated; SI units.
 
-    ``u`` (n,) displacements; ``N0`` normal force ≥ 0; ``gap`` = max(g0 − d_n, 0);
+    ``u`` (n,) displacements; ``N0`` normal force ≥ 0; ``gap`` = max(g0 − d_n, 0) on open pairs
+    and exactly 0 on active ones (exact complementarity: ``N0 · gap`` is 0 to the bit);
     ``penetration`` = max(d_n − g0, 0) (the penalty interpenetration, ~0 for Lagrange);
     ``in_contact`` = N0 > 0; ``tangential`` (m, 2) = kt·(d_t1, d_t2);
     ``relative_displacement`` (m, 3) = (d_n, d_t1, d_t2); ``iterations`` Newton/active-set
     iterations (all stages); ``residual`` = ‖K u + Gᵀλ − f‖₂/‖f‖₂ (absolute if f = 0), computed
-    with ``K`` itself; ``complementarity`` = max|N0·gap| / (max N0 · max(|g0|, |d_n|));
+    with ``K`` itself; ``complementarity`` = max|N0·max(g0 − d_n, 0)| / (max N0 · max(|g0|,
+    |d_n|, |u|)) before the projection onto exact complementarity (a KKT residual: round-off
+    for a converged solve);
     ``status`` 0 = converged, 1 = not converged, 2 = invalid physical input, 3 = singular system;
     ``reason`` human-readable.
     """
@@ -412,14 +415,20 @@ def _result(K, f, G, g0, kt, u, N, iterations, status, reason, method):
     lam = np.column_stack([N, T]).ravel()
     residual = float(np.linalg.norm(K @ u + G.T @ lam - f))
     f_norm = float(np.linalg.norm(f))
-    gap = np.maximum(g0 - d[:, 0], 0.0)
+    raw_gap = np.maximum(g0 - d[:, 0], 0.0)
     n_ref = N.max() if N.size else 0.0
     # length scale of the problem: gaps, normal motions or displacements, whichever is largest
     g_ref = max(np.abs(g0).max(initial=0.0), np.abs(d[:, 0]).max(initial=0.0),
                 np.abs(u).max(initial=0.0))
-    comp = float(np.abs(N * gap).max(initial=0.0) / (n_ref * g_ref)) if n_ref * g_ref > 0 else 0.0
+    comp = float(np.abs(N * raw_gap).max(initial=0.0) / (n_ref * g_ref)) if n_ref * g_ref > 0 else 0.0
+    in_contact = N > 0
+    # Exact complementarity by construction: the active set decides. An active pair's gap is 0
+    # (the Lagrange law's g = 0 holds in d only to round-off, which depends on the BLAS/SIMD path
+    # of G @ u; ``complementarity`` reports the size of what this projection removes); an open
+    # pair's N0 is already exactly 0 by both laws.
+    gap = np.where(in_contact, 0.0, raw_gap)
     return StaticContactResult(
-        u=u, N0=N, gap=gap, penetration=np.maximum(d[:, 0] - g0, 0.0), in_contact=N > 0,
+        u=u, N0=N, gap=gap, penetration=np.maximum(d[:, 0] - g0, 0.0), in_contact=in_contact,
         tangential=T, relative_displacement=d, iterations=iterations,
         residual=residual / f_norm if f_norm > 0 else residual, complementarity=comp,
         status=status, reason=reason, method=method)

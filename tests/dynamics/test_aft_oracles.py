@@ -33,7 +33,7 @@ def jenkins_oracle(a):
 def test_jenkins_stuck_is_exactly_linear():
     for a in (0.3 * A_S, A_S):
         lam, energy = jenkins(a, 64, H=3)
-        assert lam[0, 1, 1] == pytest.approx(KT * a, rel=1e-14)
+        assert lam[0, 1, 1] == pytest.approx(KT * a, rel=1e-12)  # DFT round-off ≲ Nt·eps
         assert np.max(np.abs(np.delete(lam[0, 1], 1))) <= 1e-12 * KT * a
         assert abs(energy) <= 1e-12 * MU * N0 * A_S
 

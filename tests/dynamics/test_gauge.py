@@ -51,7 +51,8 @@ def test_outputs_do_not_depend_on_gauge_value():
     zpos = model.eta_slices[0].start + model.zero_modes
     i = 7                                             # slipping, memory lost
     a, b = _resolve(bb, i, 0.0), _resolve(bb, i, 0.37)
-    assert a.z[zpos] == pytest.approx(0.0, abs=1e-15) and b.z[zpos] == pytest.approx(0.37)
+    scale = np.abs(a.z[:-2]).max()                     # Newton round-off relative to the state
+    assert a.z[zpos] == pytest.approx(0.0, abs=1e-10 * scale) and b.z[zpos] == pytest.approx(0.37)
     for k in (-2, -1):                                # ω and ξ
         assert b.z[k] == pytest.approx(a.z[k], rel=1e-10)
     ea, eb = a.payload, b.payload
@@ -64,7 +65,7 @@ def test_outputs_do_not_depend_on_gauge_value():
     assert np.allclose(eb.d[0] - ea.d[0], 0.37 * psi, atol=1e-9 * abs(0.37 * psi).max())
     # in stick the position is determined: the gauge value is not used
     s, t = _resolve(bb, 0, 0.0), _resolve(bb, 0, 0.37)
-    assert s.z[zpos] == pytest.approx(t.z[zpos], abs=1e-15)
+    assert s.z[zpos] == pytest.approx(t.z[zpos], abs=1e-10 * np.abs(s.z[:-2]).max())
 
 
 def test_unbalanced_free_body_is_flagged():

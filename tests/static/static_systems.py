@@ -141,6 +141,8 @@ def assert_kkt(result, system, kt, comp_tol=1e-12, balance_tol=1e-8):
     only by contact, its global force balance per direction: Σ_B (Gᵀλ) = Σ_B f."""
     assert result.status == 0, result.reason
     assert np.all(result.N0 >= 0) and np.all(result.gap >= 0)
+    # exact complementarity is the contract (docs/static_contact.md), not a tolerance
+    assert np.all(result.gap[result.in_contact] == 0.0) and np.all(result.N0[~result.in_contact] == 0.0)
     assert result.complementarity <= comp_tol
     lam = contact_forces(result)
     residual = system.K @ result.u + system.G.T @ lam - system.f

@@ -53,7 +53,7 @@ def test_floating_body_held_only_by_contact(method, g0):
     assert r.N0[0] == pytest.approx(push, rel=RTOL)
     pen = push / KN if method == "penalty" else 0.0
     assert r.penetration[0] == pytest.approx(pen, rel=RTOL, abs=RTOL * g0 + 1e-20)
-    assert r.gap[0] == 0.0
+    assert r.in_contact[0] and r.gap[0] == 0.0        # exact complementarity by contract
     u_tip = -push * chain_flexibilities(k_a)[1]
     u_near = u_tip - g0 - pen
     expected = np.array([-push / k_a[0], u_tip, u_near, u_near - push / k_b])

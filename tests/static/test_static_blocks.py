@@ -102,6 +102,22 @@ def test_partial_contact(method, case):
     assert r.N0.sum() == pytest.approx(1.0, rel=1e-8)
 
 
+@pytest.mark.parametrize("case", ["tilted load", "curved gap"])
+def test_lagrange_state_is_exactly_complementary(case):
+    """The active set decides: gap is 0 to the bit on active pairs although g0 − d_n there is
+    only round-off (its value depends on the BLAS/SIMD path), and N0 is 0 on open pairs."""
+    if case == "tilted load":
+        system = two_blocks(load=_tilted)
+    else:
+        system = two_blocks(gap=lambda x, y: 0.1 * ((x - 0.5) ** 2 + (y - 0.5) ** 2))
+    r = _solve(system, "lagrange")
+    raw_gap = system.g0 - r.relative_displacement[:, 0]
+    assert np.abs(raw_gap[r.in_contact]).max() > 0          # the projection has work to do here
+    assert np.all(r.gap[r.in_contact] == 0.0) and np.all(r.N0[~r.in_contact] == 0.0)
+    assert np.max(r.N0 * r.gap) == 0.0
+    assert r.complementarity <= 1e-12                        # what the projection removed
+
+
 def test_both_laws_agree_on_the_active_set():
     """A stiff penalty finds the exact active set; N agrees to O(structure stiffness / kn)."""
     system = two_blocks(load=_tilted)

@@ -53,6 +53,7 @@ import logging
 
 import numpy as np
 import scipy.linalg as sla
+from scipy.linalg import blas
 import xarray as xr
 
 from ..io import variable
@@ -105,12 +106,15 @@ def check_settings(settings: dict | None) -> dict:
 def correlation(kernel: str, d2: np.ndarray) -> np.ndarray:
     """ρ of the squared scaled distance d² (in place on ``d2``, which is returned)."""
     if kernel == "matern52":
-        s = np.sqrt(5.0 * d2, out=d2)
-        e = np.exp(-s)
-        s *= 1.0 + s / 3.0
-        s += 1.0
-        s *= e
-        return s
+        d2 *= 5.0
+        s = np.sqrt(d2, out=d2)
+        poly = s * s
+        poly *= 1.0 / 3.0
+        poly += s
+        poly += 1.0
+        np.negative(s, out=s)
+        poly *= np.exp(s, out=s)
+        return poly
     if kernel == "squared_exponential":
         d2 *= -0.5
         return np.exp(d2, out=d2)
@@ -144,7 +148,9 @@ class GPModel:
             except np.linalg.LinAlgError as err:
                 raise np.linalg.LinAlgError(f"correlation matrix not positive definite (scale {self.scale}, "
                                             f"nugget {self.nugget}): {err}") from None
-            self.Rinv = sla.cho_solve(cho, np.eye(len(self.y)))
+            # R = L Lᵀ; L⁻¹ (lower triangular) serves the variance: r₀ᵀR⁻¹r₀ = ‖L⁻¹r₀‖²
+            self.Linv = sla.solve_triangular(np.tril(cho[0]), np.eye(len(self.y)), lower=True)
+            self.Linv_1 = self.Linv.sum(axis=1)
             self.Rinv_1 = sla.cho_solve(cho, np.ones(len(self.y)))
             self.one_Rinv_1 = self.Rinv_1.sum()
             self.Rinv_y = sla.cho_solve(cho, self.y)
@@ -171,9 +177,9 @@ class GPModel:
         mean = self.beta + r @ self.alpha
         if not with_std:
             return mean, None
-        v = r @ self.Rinv
-        u = 1.0 - v.sum(axis=1)
-        var = 1.0 + self.nugget - np.einsum("ij,ij->i", v, r) + u * u / self.one_Rinv_1
+        b = blas.dtrmm(1.0, self.Linv, r.T, lower=1)  # L⁻¹r₀ for every point, (N, m)
+        u = 1.0 - self.Linv_1 @ b
+        var = 1.0 + self.nugget - np.einsum("ij,ij->j", b, b) + u * u / self.one_Rinv_1
         return mean, self.sigma * np.sqrt(np.maximum(var, 0.0))
 
     def loo_residuals(self) -> np.ndarray:
@@ -181,7 +187,7 @@ class GPModel:
         if self.is_constant:
             return self.y - self.beta
         w = self.Rinv_y - self.gls_beta() * self.Rinv_1
-        diag = np.diag(self.Rinv) - self.Rinv_1**2 / self.one_Rinv_1
+        diag = np.einsum("ij,ij->j", self.Linv, self.Linv) - self.Rinv_1**2 / self.one_Rinv_1
         return w / diag
 
 
@@ -314,8 +320,9 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
     """One Kriging model per (output, amplitude) on the usable geometries → the ``kriging.nc`` Dataset.
 
     dataset: dims (geometry, amplitude), coords kappa1..3 (on geometry), data vars ``outputs``.
-    mask: bool (geometry,) or (geometry, amplitude), True where a point may train (default all);
-        a NaN/inf output under the mask is an error naming the output and amplitude.
+    mask: bool (geometry,) or (geometry, amplitude), True where a point may train (default all): the
+        caller excludes validation geometries and failed solves; a NaN/inf output under the mask is an
+        error naming the output and amplitude. Geometries never used are not stored.
     settings: the ``surrogate`` section; keys and defaults in DEFAULT_SETTINGS (see check_settings).
     Layout of the result: docs/surrogate.md.
     """
@@ -323,6 +330,8 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
     outputs = tuple(outputs)
     kappa = _check_inputs(dataset, outputs)
     use = _training_mask(dataset, mask)
+    used = use.any(axis=1)  # geometries that train at least one model: the only ones stored
+    dataset, kappa, use = dataset.isel(geometry=used), kappa[used], use[used]
     n_amp, n_out, dim = dataset.sizes["amplitude"], len(outputs), len(PARAMETERS)
     scale = np.full((n_out, n_amp, dim), np.nan)
     nugget, loglik, q2s = (np.full((n_out, n_amp), np.nan) for _ in range(3))
@@ -406,7 +415,7 @@ class KrigingSurrogate:
                                 ds[f"{out}_beta"].values[ia], kappa[rows], y[ia, rows])
                 self.groups.setdefault(kappa[rows].tobytes(), []).append((out, ia, model))
 
-    def predict(self, X, outputs=None, with_std: bool = True, chunk_size: int = 4096) -> xr.Dataset:
+    def predict(self, X, outputs=None, with_std: bool = True, chunk_size: int = 1024) -> xr.Dataset:
         """Dataset with ``<output>`` and ``<output>_std`` (amplitude, point) at X (m, 3); NaN where no
         model was fitted. Work is chunked in m (memory ~ 6 chunk_size × N doubles, N training points)."""
         X = np.atleast_2d(np.asarray(X, dtype=float))
@@ -441,7 +450,7 @@ class KrigingSurrogate:
         return xr.Dataset(data, coords=coords)
 
 
-def predict(kriging: xr.Dataset, X, outputs=None, with_std: bool = True, chunk_size: int = 4096) -> xr.Dataset:
+def predict(kriging: xr.Dataset, X, outputs=None, with_std: bool = True, chunk_size: int = 1024) -> xr.Dataset:
     """Predictions of a ``kriging.nc`` Dataset at X (m, 3); see KrigingSurrogate.predict. For repeated
     calls build the KrigingSurrogate once (it factorises every model)."""
     return KrigingSurrogate(kriging).predict(X, outputs, with_std, chunk_size)

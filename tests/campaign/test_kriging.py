@@ -175,6 +175,9 @@ def test_nan_training_value_is_rejected_with_its_name():
     out = K.fit_campaign(ds, outputs=("zeta",), mask=mask, settings=FAST)
     assert out["n_training"].values[0].tolist() == [40, 39, 40]
     assert np.isnan(out["zeta"].values[1, 4])
+    # a per-geometry mask drops the geometry from the file altogether
+    out = K.fit_campaign(ds, outputs=("zeta",), mask=np.arange(ds.sizes["geometry"]) != 4, settings=FAST)
+    assert out.sizes["geometry"] == 39 and "t004" not in out["geometry"].values
 
 
 def test_too_few_training_points_leave_the_model_unfitted():

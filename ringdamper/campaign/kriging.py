@@ -104,7 +104,7 @@ def check_settings(settings: dict | None) -> dict:
 
 
 def correlation(kernel: str, d2: np.ndarray) -> np.ndarray:
-    """ρ of the squared scaled distance d² (in place on ``d2``, which is returned)."""
+    """ρ of the squared scaled distance d² (``d2`` is overwritten)."""
     if kernel == "matern52":
         d2 *= 5.0
         s = np.sqrt(d2, out=d2)

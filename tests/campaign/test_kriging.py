@@ -201,3 +201,17 @@ def test_too_few_training_points_leave_the_model_unfitted():
 def test_bad_settings_are_named(settings, message):
     with pytest.raises(ValueError, match=message):
         K.check_settings(settings)
+
+
+def test_fit_does_not_depend_on_the_output_unit():
+    """|q_res,z| is ~1e-5 m in SI: scaling the data by 1e-5 scales the predictions and leaves θ
+    unchanged, to the optimiser's tolerance (measured 1e-5 relative)."""
+    x = lhs(30, 2)
+    y = np.exp(-np.sum((x - 0.2) ** 2, axis=1))
+    one, _ = K.fit_model(x, y, FAST)
+    small, _ = K.fit_model(x, 1e-5 * y, FAST)
+    points = lhs(100, 8)
+    (m1, s1), (m2, s2) = one.predict(points), small.predict(points)
+    np.testing.assert_allclose(small.scale, one.scale, rtol=1e-3)
+    np.testing.assert_allclose(m2, 1e-5 * m1, rtol=0, atol=1e-3 * 1e-5 * np.ptp(y))
+    np.testing.assert_allclose(s2, 1e-5 * s1, rtol=0, atol=1e-3 * 1e-5 * one.sigma)

@@ -307,6 +307,8 @@ def _training_mask(dataset: xr.Dataset, mask) -> np.ndarray:
 
 
 def _check_inputs(dataset: xr.Dataset, outputs) -> np.ndarray:
+    if not {"geometry", "amplitude"} <= set(dataset.dims):
+        raise ValueError(f"dataset dims are {tuple(dataset.dims)}; expected (geometry, amplitude)")
     missing = [k for k in (*PARAMETERS, *outputs) if k not in dataset.variables]
     if missing:
         raise ValueError(f"dataset lacks {missing}; needs coords {PARAMETERS} and data vars {tuple(outputs)}")

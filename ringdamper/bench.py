@@ -140,8 +140,16 @@ def _mesh_convergence(config: dict) -> dict:
     return {"levels": mesh_study(config)}
 
 
+def _surrogate(config: dict) -> dict:
+    """Kriging (120 models) + 50³ grid + Sobol on synthetic data of the campaign's size."""
+    from .campaign.bench_surrogate import run
+
+    return run(config.get("surrogate"))
+
+
 BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "geometry_chain": _geometry_chain,
-              "dynamics_synthetic": _dynamics_synthetic, "mesh_convergence": _mesh_convergence}
+              "dynamics_synthetic": _dynamics_synthetic, "mesh_convergence": _mesh_convergence,
+              "surrogate": _surrogate}
 
 
 def _run_one(name, config, queue):

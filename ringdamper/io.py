@@ -71,3 +71,14 @@ def mesh_fields(model) -> tuple[dict, dict]:
     return ({"body": model.node_body, "pair_id": pair_id, "contact_normal": normal,
              "forcing_node": forcing},
             {"part": model.geometry.part})
+
+
+def log_to(path) -> None:
+    """Send stderr and the package's ``logging`` records (INFO and above) to the rule's log file."""
+    import logging
+    import sys
+
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    sys.stderr = open(path, "w", buffering=1)
+    logging.basicConfig(stream=sys.stderr, level=logging.INFO, format="%(name)s: %(message)s",
+                        force=True)

@@ -9,7 +9,7 @@ import traceback
 import numpy as np
 import yaml
 
-from ringdamper.dnnm_stage import failed_dnnm, run_dnnm
+from ringdamper.nonlinear.stage import failed_dnnm, run_dnnm
 from ringdamper.io import read_netcdf, write_netcdf
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)

@@ -2,7 +2,7 @@
 from pathlib import Path
 
 from ringdamper.io import mesh_fields, read_netcdf, write_netcdf, write_vtu, write_yaml
-from ringdamper.modal_stage import run_modal_stage, target_mode_shapes
+from ringdamper.modal.stage import run_modal_stage, target_mode_shapes
 from ringdamper.plots.modal import plot_campbell, plot_mode_shapes, plot_nd_diagram
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)

@@ -12,7 +12,7 @@ import xarray as xr
 from ringdamper.fem.model import build_model
 from ringdamper.geometry.sector import build_sector
 from ringdamper.io import write_netcdf, write_vtu
-from ringdamper.static_stage import solve_static, static_dataset, static_fields
+from ringdamper.static.stage import solve_static, static_dataset, static_fields
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 kappa = sm.params.kappa

@@ -5,7 +5,7 @@ its target mode is the harmonic-1 stuck mode nearest the modal stage's resonance
 """
 import yaml
 
-from ringdamper.dnnm_stage import contacts_from_static, structure_from_reduced, target_stuck_frequency
+from ringdamper.nonlinear.stage import contacts_from_static, structure_from_reduced, target_stuck_frequency
 from ringdamper.io import read_netcdf, write_yaml
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)

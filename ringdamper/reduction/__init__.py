@@ -7,10 +7,10 @@
 ``reduced``: the chain, the modal basis, the stuck contact and the reduced.nc contract.
 """
 
-from .reduced import (N_FI, N_HARMONICS, N_IF, ModalBasis, ReducedHarmonic, ReducedSector,
-                      eigenfrequencies, modal_basis, modal_stuck_frequencies, pair_stiffness,
+from .reduced import (ModalBasis, ReducedHarmonic, ReducedSector,
+                      eigenfrequencies, modal_basis, modal_stuck_frequencies,
                       reduce_sector, reduced_dataset, stuck_frequencies, stuck_matrices)
 
-__all__ = ["N_FI", "N_HARMONICS", "N_IF", "ModalBasis", "ReducedHarmonic", "ReducedSector",
-           "eigenfrequencies", "modal_basis", "modal_stuck_frequencies", "pair_stiffness",
+__all__ = ["ModalBasis", "ReducedHarmonic", "ReducedSector",
+           "eigenfrequencies", "modal_basis", "modal_stuck_frequencies",
            "reduce_sector", "reduced_dataset", "stuck_frequencies", "stuck_matrices"]

@@ -7,9 +7,9 @@ N = max(u_free − g0, 0) / (c + 1/kn) (penalty) or max(u_free − g0, 0) / c (e
 import numpy as np
 import pytest
 
-from static_systems import chain_flexibilities, floating_pair, wall_chain
+from ringdamper.static.synthetic import chain_flexibilities, floating_pair, wall_chain
 
-from ringdamper.contact.static import solve_static_contact
+from ringdamper.static.solver import solve_static_contact
 
 K_SPRINGS = np.array([3.0e6, 1.5e6, 4.0e6, 2.5e6])
 LOADS = np.array([10.0, -4.0, 25.0, 40.0])

@@ -1,7 +1,4 @@
 rule reduced:
-    input:
-        mesh=f"{RESULTS}/geometry/{{gid}}/mesh.vtu",
-        static=f"{RESULTS}/geometry/{{gid}}/static.nc",
     output:
         f"{RESULTS}/geometry/{{gid}}/reduced.nc",
     params:

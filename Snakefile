@@ -1,4 +1,4 @@
-# ringdamper: the design campaign of friction ring dampers as a Snakemake DAG (DESIGN §1).
+# ringdamper: the design campaign of friction ring dampers as a Snakemake DAG (docs/design.md §1).
 import sys
 from pathlib import Path
 
@@ -27,6 +27,7 @@ include: "workflow/rules/dnnm.smk"
 rule all:
     input:
         f"{RESULTS}/samples.csv",
+        expand(f"{RESULTS}/geometry/{{gid}}/mesh.vtu", gid=geometry_ids()),
         expand(f"{RESULTS}/geometry/{{gid}}/dnnm.nc", gid=geometry_ids()),
         f"{RESULTS}/modal/resonance.yaml",
         f"{RESULTS}/figures/static_contact_maps.png",

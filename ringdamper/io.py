@@ -1,4 +1,4 @@
-"""File contracts between the stages (DESIGN §4), in one place.
+"""File contracts between the stages (docs/design.md §4), in one place.
 
 NetCDF through xarray: SI units, and every data variable and coordinate carries ``units`` and
 ``long_name`` (checked on write). Meshes and fields for ParaView through meshio (VTU, 27-node bricks

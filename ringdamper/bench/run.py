@@ -1,6 +1,6 @@
 """Benchmarks (``make bench``): wall time, peak memory and sizes of each stage, written to files.
 
-Speed is measured here, never asserted in tests (DESIGN §8). Each benchmark runs in its own process
+Speed is measured here, never asserted in tests (docs/design.md §8). Each benchmark runs in its own process
 so that peak memory (ru_maxrss) belongs to it alone.
 """
 
@@ -74,7 +74,9 @@ def _geometry_chain(config: dict) -> dict:
     from ringdamper.fem.model import build_model
     from ringdamper.geometry.sector import build_sector
     from ringdamper.reduction import modal_basis, reduce_sector, reduced_dataset
+    from ringdamper.reduction.stage import reduction_sizes
     from ringdamper.static.stage import solve_static, static_dataset
+    from ringdamper.studies.hub_calibration import crossing_speed
 
     kappa = (0.0, 0.0, 0.0)
     times = {}
@@ -88,10 +90,11 @@ def _geometry_chain(config: dict) -> dict:
     t = time.perf_counter()
     red = config["reduction"]
     rs = reduce_sector(model, config["operation"]["engine_order"], n_harmonics=red["n_harmonics"],
-                       n_fi=red["n_fixed_interface_modes"], n_if=red["n_interface_modes"])
+                       **reduction_sizes(config))
     reduced = reduced_dataset(rs, kappa, [modal_basis(rh, rs.B, rs.response_index) for rh in rs.harmonics])
     times["reduced_s"] = time.perf_counter() - t
-    target_hz = 936.45
+    # the target mode: nearest the EO x target-family crossing (the modal stage's resonance)
+    target_hz = crossing_speed(config)[1]
     structure = structure_from_reduced(reduced, 1)
     contacts = contacts_from_static(static, config["contact"], config["dnnm"]["friction_law"])
     w_default = target_stuck_frequency(structure, contacts, target_hz)

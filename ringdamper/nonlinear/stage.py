@@ -1,4 +1,4 @@
-"""dNNM + E-EBM stage of one geometry (paper §2.5.3; DESIGN §3.4, §4): reduced.nc + static.nc -> dnnm.nc.
+"""dNNM + E-EBM stage of one geometry (paper §2.5.3; docs/design.md §3.4, §4): reduced.nc + static.nc -> dnnm.nc.
 
 The reduced model is read in its own modal coordinates: per harmonic h, mass-normalised modes with
 eigenvalues w_r^2, their relative contact coordinates B phi_r and their response (blade-tip Z) value
@@ -9,6 +9,7 @@ representation of the reduced model, so the condensation of ``nonlinear.condense
 
 from __future__ import annotations
 
+import logging
 import time
 
 import numpy as np
@@ -20,6 +21,8 @@ from ringdamper.nonlinear.epmc import epmc
 from ringdamper.nonlinear.structure import HarmonicData, Structure
 from ringdamper.io import variable
 from ringdamper.nonlinear.normalisation import normalised_frequency
+
+log = logging.getLogger(__name__)
 
 
 def structure_from_reduced(reduced: xr.Dataset, n_harmonics: int) -> Structure:
@@ -59,7 +62,7 @@ def target_stuck_frequency(structure: Structure, contacts: FrictionContacts, tar
 
 
 def amplitude_grid(dnnm_cfg: dict) -> np.ndarray:
-    """The common modal-amplitude grid alpha (kg^1/2 m), log-spaced (DESIGN §4)."""
+    """The common modal-amplitude grid alpha (kg^1/2 m), log-spaced (docs/design.md §4)."""
     return np.geomspace(dnnm_cfg["amplitude_min"], dnnm_cfg["amplitude_max"], dnnm_cfg["n_amplitudes"])
 
 
@@ -122,3 +125,33 @@ def failed_dnnm(config: dict, kappa, reason: str, status: int = 99) -> xr.Datase
     data["status"] = variable("amplitude", np.full(len(alpha), status, np.int8), "1", "failure status")
     return xr.Dataset(data, coords={"amplitude": variable("amplitude", alpha, "kg0.5 m", "modal amplitude")},
                       attrs={"kappa": np.asarray(kappa, dtype=float), "reason": reason})
+
+
+def default_normalisation(reduced: xr.Dataset, static: xr.Dataset, config: dict,
+                          target_hz: float) -> dict:
+    """What every geometry's dNNM is normalised by, computed once on the default ring: the target
+    frequency of the modal stage and the default ring's linearised stuck frequency of the harmonic-1
+    mode nearest it, ``omega_stuck_default_rad_s`` (the reference of ``normalised_frequency``)."""
+    structure = structure_from_reduced(reduced, 1)
+    contacts = contacts_from_static(static, config["contact"], config["dnnm"]["friction_law"])
+    omega = target_stuck_frequency(structure, contacts, target_hz)
+    log.info("omega_stuck_default = %.6f rad/s", omega)
+    return {"target_frequency_hz": float(target_hz), "omega_stuck_default_rad_s": omega}
+
+
+def dnnm_stage(reduced: xr.Dataset, static: xr.Dataset, config: dict, kappa,
+               normalisation: dict) -> xr.Dataset:
+    """The dNNM stage of geometry ``kappa`` (``normalisation`` from :func:`default_normalisation`).
+    It never raises: a failed static state or solve gives :func:`failed_dnnm` (status 99 and the
+    reason), so the campaign goes on."""
+    try:
+        if static.attrs["status"] != 0:
+            raise RuntimeError(f"static solve failed: {static.attrs['reason']}")
+        ds = run_dnnm(reduced, static, config, normalisation["target_frequency_hz"],
+                      normalisation["omega_stuck_default_rad_s"])
+    except Exception as err:  # a failed geometry must not stop the campaign
+        log.exception("dNNM stage failed for kappa=%s", list(kappa))
+        return failed_dnnm(config, kappa, f"{type(err).__name__}: {err}")
+    counts = np.bincount(ds.status.values.astype(int), minlength=5)
+    log.info("kappa=%s status counts %s wall %.1f s", list(kappa), counts.tolist(), ds.attrs["wall_time_s"])
+    return ds

@@ -1,4 +1,4 @@
-"""Static contact stage (paper §2.4, §3.1.2; DESIGN §3.2): N0 and gap of every contact pair.
+"""Static contact stage (paper §2.4, §3.1.2; docs/design.md §3.2): N0 and gap of every contact pair.
 
 The sector (blisk + ring, linear elastic) is solved at operating speed with the ND-0 cyclic
 constraint u_R = R_z(2 pi / N) u_L (``fem.cyclic``), the bore clamped, the centrifugal body force
@@ -12,6 +12,7 @@ about Z and its axial translation determinate. Geometric nonlinearity is neglect
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,10 +23,12 @@ from ringdamper.static.solver import StaticContactResult, solve_static_contact
 from ringdamper.fem.cyclic import cyclic_transform, project
 from ringdamper.fem.elasticity import centrifugal_load
 from ringdamper.fem.contact_law import pair_stiffness
-from ringdamper.fem.model import SectorModel, node_dofs, relative_displacement_operator
+from ringdamper.fem.model import SectorModel, build_model, node_dofs, relative_displacement_operator
 from ringdamper.fem.prestress import rpm_to_rad_s, spin_mass
-from ringdamper.geometry.sector import BODY_RING
+from ringdamper.geometry.sector import BODY_RING, build_sector
 from ringdamper.io import variable
+
+log = logging.getLogger(__name__)
 
 
 @dataclass
@@ -71,7 +74,7 @@ def solve_static(model: SectorModel, config: dict, speed_rpm: float | None = Non
 
 def static_dataset(model: SectorModel, result: StaticContactResult, prob: StaticProblem,
                    kappa, speed_rpm: float) -> xr.Dataset:
-    """``static.nc`` (DESIGN §4): per pair N0, gap, in_contact, position, frame; KKT in the attrs."""
+    """``static.nc`` (docs/design.md §4): per pair N0, gap, in_contact, position, frame; KKT in the attrs."""
     pairs = model.pairs
     m = len(pairs)
     frame = pairs.frame
@@ -117,3 +120,22 @@ def static_fields(model: SectorModel, result: StaticContactResult, prob: StaticP
         gap[nodes] = result.gap
     u = (prob.T @ result.u).reshape(-1, 3) if np.all(np.isfinite(result.u)) else np.zeros((n, 3))
     return {"displacement": u, "N0": n0, "gap": gap}
+
+
+def run_static(config: dict, kappa) -> tuple[xr.Dataset, SectorModel | None, dict | None]:
+    """The static stage of geometry ``kappa`` at the operating speed: (static.nc dataset, model,
+    static.vtu point fields). It never raises: a failure (meshing, assembly or solve) gives a
+    dataset with status 99 and the reason, and no model or fields, so the campaign goes on."""
+    speed = config["operation"]["speed_rpm"]
+    try:
+        model = build_model(build_sector(config, kappa), config)
+        result, prob = solve_static(model, config)
+    except Exception as err:  # a failed geometry must not stop the campaign
+        log.exception("static stage failed for kappa=%s", list(kappa))
+        return xr.Dataset(attrs={"kappa": np.asarray(kappa, dtype=float), "speed_rpm": speed,
+                                 "status": 99, "reason": f"{type(err).__name__}: {err}"}), None, None
+    ds = static_dataset(model, result, prob, kappa, speed)
+    log.info("kappa=%s status=%d (%s) iterations=%d in_contact=%d/%d residual=%.2e "
+             "complementarity=%.2e", list(kappa), result.status, result.reason, result.iterations,
+             ds.attrs["n_in_contact"], len(model.pairs), result.residual, result.complementarity)
+    return ds, model, static_fields(model, result, prob)

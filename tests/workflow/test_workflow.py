@@ -12,7 +12,7 @@ import yaml
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.io import read_netcdf
 
-REPO = Path(__file__).resolve().parent.parent
+REPO = Path(__file__).resolve().parents[2]
 
 
 def _snakemake(workdir, configfile, *targets, dry=False):

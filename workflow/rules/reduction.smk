@@ -8,6 +8,6 @@ rule reduced:
     benchmark:
         f"{RESULTS}/benchmarks/reduced/{{gid}}.tsv"
     conda:
-        "../../envs/fem.yaml"
+        "../../envs/ringdamper.yaml"
     script:
         "../../scripts/reduced.py"

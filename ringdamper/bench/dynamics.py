@@ -1,4 +1,4 @@
-"""Benchmark of the nonlinear dynamics core on a synthetic system of the real size (DESIGN §8).
+"""Benchmark of the nonlinear dynamics core on a synthetic system of the real size (docs/design.md §8).
 
 The synthetic blisk + ring: per harmonic ``h = 0..5`` a reference sector with ``n_blisk``
 blisk and ``n_ring`` ring DoFs (Hermitian, complex for h ≥ 1 as under a cyclic constraint; the

@@ -5,7 +5,7 @@ the vector DoFs of node i are 3i, 3i+1, 3i+2 (x, y, z). Linear elasticity, lumpe
 the consistent matrices of both bodies (blisk and ring are disconnected in K, coupled only through
 the contact pairs).
 
-Contact pairs (DESIGN §2): one per node of the ring's upper surface inside the sector; nodes on the
+Contact pairs (docs/design.md §2): one per node of the ring's upper surface inside the sector; nodes on the
 right cyclic cut are dropped (they are the next sector's left-cut nodes) and their tributary area is
 added to their left partners, so every pair is counted once. Local frame per pair: n = outward normal
 of the ring's upper surface r = R_c + delta1 b(theta) (from the ring towards the blisk), t1
@@ -27,7 +27,7 @@ from ..geometry.shape import upper_slope
 from .contact_law import spring_diagonal, stuck_pair_stiffness
 from .elasticity import mass_matrix, tangent_stiffness
 
-INTORDER = {1: 3, 2: 5}  # Gauss rule exact for the mass matrix of each order (DESIGN §9)
+INTORDER = {1: 3, 2: 5}  # Gauss rule exact for the mass matrix of each order (docs/design.md §9)
 ELEMENTS = {1: ElementHex1, 2: ElementHex2}
 
 

@@ -1,4 +1,4 @@
-"""Linear modal analysis of the rotating blisk + ring (paper §2.3, Figs. 3–5; DESIGN §3.1).
+"""Linear modal analysis of the rotating blisk + ring (paper §2.3, Figs. 3–5; docs/design.md §3.1).
 
 * ``cyclic_modes``: eigenpairs of the ND-k sector, K_k phi = w^2 M_k phi (shift-invert Lanczos).
 * ``classify``: families by where the strain energy lives: a mode with more than half of it in the

@@ -2,7 +2,7 @@
 
 Run once on the default ring. The contact is linearised from the static contact state: pairs with
 N0 > 0 stuck (kn, kt springs), pairs with an open gap free; without a static state every pair is
-taken as stuck. The datasets say which in their ``contact_state`` attribute. The normalised frequency is omega0 = 2.195 omega / omega_stuck,default (DESIGN §2), with
+taken as stuck. The datasets say which in their ``contact_state`` attribute. The normalised frequency is omega0 = 2.195 omega / omega_stuck,default (docs/design.md §2), with
 omega_stuck,default the target mode's frequency at the crossing speed.
 """
 

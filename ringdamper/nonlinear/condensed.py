@@ -1,4 +1,4 @@
-"""Harmonic balance residual condensed exactly onto the contact coordinates (DESIGN §3.4).
+"""Harmonic balance residual condensed exactly onto the contact coordinates (docs/design.md §3.4).
 
 Per harmonic h the linear DoFs are eliminated by modal summation over *all* modes of
 ``(K_h, M_h)`` (:mod:`ringdamper.nonlinear.structure`). With modal damping ``c_r`` and the EPMC term

@@ -1,4 +1,4 @@
-"""Extended energy balance method (paper §2.5.3.2, Eqs. 5–6; Sun et al. 2021a; DESIGN §3.4).
+"""Extended energy balance method (paper §2.5.3.2, Eqs. 5–6; Sun et al. 2021a; docs/design.md §3.4).
 
 For every dNNM point (ω, ζ = ξ/2ω, modal coordinates ``η_{h,r}``), with the Fourier convention
 ``q(t) = Re Σ_h Q_h e^{ihωt}`` (:mod:`ringdamper.nonlinear.fourier`) and ``Q_h = Φ_h η_h``:

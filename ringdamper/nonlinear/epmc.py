@@ -1,5 +1,5 @@
 """Damped nonlinear normal modes by the extended periodic motion concept (Krack 2015; paper §2.5.3;
-DESIGN §3.4).
+docs/design.md §3.4).
 
     M q̈ + K q + Bᵀ λ(Bq) − ξ M q̇ = 0,       ξ = 2 ζ ω      (structural damping *not* included),
 

@@ -1,4 +1,4 @@
-"""Forced-response harmonic balance (paper Eq. 1; DESIGN §3.5):
+"""Forced-response harmonic balance (paper Eq. 1; docs/design.md §3.5):
 
     M q̈ + C q̇ + K q + Bᵀ λ(Bq) = Re(γ F̂_h e^{ihωt}),
 

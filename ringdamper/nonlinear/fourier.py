@@ -51,7 +51,7 @@ class Fourier:
 
 
 def default_nt(H: int) -> int:
-    """Default AFT sample count: a power of two ≥ max(32, 16 H) (a dial of DESIGN §6)."""
+    """Default AFT sample count: a power of two ≥ max(32, 16 H) (a dial of docs/design.md §6)."""
     return int(2 ** np.ceil(np.log2(max(32, 16 * H))))
 
 

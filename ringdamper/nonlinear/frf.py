@@ -1,5 +1,5 @@
 """Nonlinear forced response: arc-length continuation in excitation frequency and resonance-peak
-extraction (paper §2.6 Fig. 9, §3.4 Fig. 19g; DESIGN §3.5).
+extraction (paper §2.6 Fig. 9, §3.4 Fig. 19g; docs/design.md §3.5).
 
 The forcing is ``Re(γ F̂ e^{iωt})`` with ``F̂`` the structure's harmonic-1 forcing vector (phase 0),
 structural damping the modal ratio ``zeta_s``. The curve starts from a converged fixed-frequency

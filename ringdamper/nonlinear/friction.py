@@ -1,6 +1,6 @@
 """3-D frictional contact element and its alternating frequency–time (AFT) evaluation.
 
-Element (paper §2.5.2 after Yang & Menq 1998; DESIGN §2 "Contact pairs"), per pair, in the local
+Element (paper §2.5.2 after Yang & Menq 1998; docs/design.md §2 "Contact pairs"), per pair, in the local
 frame (n, t1, t2) of the relative displacement d = u_ring − u_blisk (d_n > 0 closes the contact):
 
 * normal: unilateral spring with preload ``N0`` or gap ``gap`` (one of them zero),
@@ -17,7 +17,7 @@ there, so stuck contacts behave as the linear springs ``(kn, kt, kt)`` of the li
 system); along a continuation it is the periodic state of the previous solution (a quasi-static
 history: a pair that re-sticks keeps the slider where it stopped).
 
-Periodic state ("march until periodic", DESIGN §2): for the Jenkins law the map "one period" is a
+Periodic state ("march until periodic", docs/design.md §2): for the Jenkins law the map "one period" is a
 clamp ``w ↦ clip(w, A, B)`` (a composition of clamps is a clamp), which is idempotent, so the state
 reached after marching the first period from the memory is periodic; it is computed for all samples
 at once by a parallel prefix scan of the clamps and the periodicity of the start state is checked.

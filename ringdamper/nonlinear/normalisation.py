@@ -1,4 +1,4 @@
-"""Normalised frequency of the paper's figures (DESIGN §2, *Frequency normalisation*):
+"""Normalised frequency of the paper's figures (docs/design.md §2, *Frequency normalisation*):
 ω0 = 2.195 · ω / ω_stuck,default, with ω_stuck,default the default ring's linearised stuck
 frequency at operating speed, so that figures compare directly with the paper's axes."""
 

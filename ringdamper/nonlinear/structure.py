@@ -1,4 +1,4 @@
-"""The linear structure seen by the harmonic balance: one matrix set per harmonic (DESIGN §3.3–3.4).
+"""The linear structure seen by the harmonic balance: one matrix set per harmonic (docs/design.md §3.3–3.4).
 
 Harmonic ``h`` of the reference sector obeys ``(K_h − h²ω² M_h + ihω C_h) Q_h + B_hᴴ Λ_h = F_h``
 (Galerkin projection, Hermitian ``M_h``, ``K_h``), where ``d_h = B_h Q_h`` are the harmonics of the

@@ -1,4 +1,4 @@
-"""Three-step model reduction of the blisk + ring sector (paper §2.5.1; DESIGN §3.3).
+"""Three-step model reduction of the blisk + ring sector (paper §2.5.1; docs/design.md §3.3).
 
 1. ``craig_bampton``: Craig–Bampton on the real sector (bore clamped), retained = contact pairs,
    blade-tip node, both cyclic faces (``partition``).

@@ -166,7 +166,7 @@ def modal_stuck_frequencies(omega2, contact, kn, kt, n_modes: int | None = None)
 
 def reduced_dataset(rs: ReducedSector, kappa, bases: list[ModalBasis] | None = None,
                     attrs: dict | None = None) -> xr.Dataset:
-    """The reduced.nc contract (DESIGN §4): per harmonic, all omega^2 and the mass-normalised mode
+    """The reduced.nc contract (docs/design.md §4): per harmonic, all omega^2 and the mass-normalised mode
     shapes at the contact coordinates and the response DoF (complex split into real/imag)."""
     bases = bases or [modal_basis(rh, rs.B, rs.response_index) for rh in rs.harmonics]
     hs = rs.harmonics

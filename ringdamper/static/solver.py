@@ -1,4 +1,4 @@
-"""Nonlinear static equilibrium with unilateral normal contact (paper §2.4, §3.1.2; DESIGN §3.2).
+"""Nonlinear static equilibrium with unilateral normal contact (paper §2.4, §3.1.2; docs/design.md §3.2).
 
 Problem. A linear elastic structure (stiffness ``K``, symmetric positive semi-definite, already
 constrained and spin-softened by the caller) under a load ``f`` touches itself through ``m``

@@ -1,4 +1,4 @@
-"""Calibration of the friction-contact parameters on the default ring (issue 5; DESIGN §2 "Contact pairs").
+"""Calibration of the friction-contact parameters on the default ring (docs/design.md §2 "Contact pairs").
 
 The paper does not give μ, kn, kt. They are chosen ONCE, on the default ring (κ = 0), inside the
 physically plausible ranges of :data:`PLAUSIBLE`, so that the default ring's dNNM backbone resembles

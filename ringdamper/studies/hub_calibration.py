@@ -1,4 +1,4 @@
-"""Calibration of the dimensions Table 1 does not give (DESIGN §2 "Blisk").
+"""Calibration of the dimensions Table 1 does not give (docs/design.md §2 "Blisk").
 
 The hub (bore) axial thickness of the tapered web is chosen so that the first disk family (1D) at
 the target nodal diameter crosses the engine-order line at the operating speed: Brent's method on

@@ -1,4 +1,4 @@
-"""Mesh convergence of the target mode (DESIGN §6: every approximation is a dial with a chart).
+"""Mesh convergence of the target mode (docs/design.md §6: every approximation is a dial with a chart).
 
 A mesh level multiplies every element count of the ``mesh`` section; for each level the 1D-ND3
 frequency of the default ring is computed at operating speed (prestressed, contact stuck), with the

@@ -1,4 +1,4 @@
-"""Convergence of the reduced model with the numbers of fixed-interface and interface modes (DESIGN §6).
+"""Convergence of the reduced model with the numbers of fixed-interface and interface modes (docs/design.md §6).
 
 Reference: the full FE cyclic sector model (``ringdamper.modal.analysis.cyclic_modes`` and a direct sparse
 solve), contact free and stuck. Measured per (n_fi, n_if):

@@ -1,4 +1,4 @@
-"""Cyclic symmetry: sector eigenvalues of ND k equal those of the full 360-degree model (DESIGN §7)."""
+"""Cyclic symmetry: sector eigenvalues of ND k equal those of the full 360-degree model (docs/design.md §7)."""
 import numpy as np
 import pytest
 

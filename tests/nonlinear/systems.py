@@ -15,7 +15,7 @@ def one_dof(H=1, m=2.0, k=100.0, kt=50.0, mu=0.3, N=10.0, kn=1e3, zero_tol=1e-9)
 
 def describing_function(a, m=2.0, k=100.0, kt=50.0, mu=0.3, N=10.0):
     """H = 1 describing-function dNNM of :func:`one_dof` at displacement amplitude ``a``:
-    returns ω, ζ (DESIGN §7 Jenkins oracle)."""
+    returns ω, ζ (docs/design.md §7 Jenkins oracle)."""
     a = np.asarray(a, float)
     a_s = mu * N / kt
     slip = a > a_s

@@ -1,4 +1,4 @@
-"""DESIGN §7 contact oracles through the AFT, to 1e-6 relative (test 1).
+"""docs/design.md §7 contact oracles through the AFT, to 1e-6 relative.
 
 Quantities that the sampled AFT reproduces exactly are checked at machine precision; those with a
 kink inside a sampling interval converge as O(Nt⁻²): their error is shown to shrink at that rate

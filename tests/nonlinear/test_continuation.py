@@ -1,4 +1,4 @@
-"""Continuation robustness (test 7): the dNNM continuation crosses the stick-to-slip transition
+"""Continuation robustness: the dNNM continuation crosses the stick-to-slip transition
 with every grid point converged and no gap or reversal in α; impossible requests end with a
 recorded status, never an exception."""
 import numpy as np

@@ -1,4 +1,4 @@
-"""Cyclic travelling-wave check (test 5, DESIGN §3.3–3.4, §7): the reference-sector solution
+"""Cyclic travelling-wave check (docs/design.md §3.3–3.4, §7): the reference-sector solution
 (6 sectors, EO 2, H = 5, a free ring held by friction), shifted in time by EO·j/N of a period for
 sector j, satisfies the full 360° harmonic balance — with the contact forces of every sector
 recomputed from its own relative displacements — to 1e-10."""

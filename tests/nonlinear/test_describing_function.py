@@ -1,5 +1,5 @@
 """1-DoF oscillator with one Jenkins element, H = 1: the EPMC backbone equals the
-describing-function solution to 1e-8 at 20 amplitudes from full stick to gross slip (test 3).
+describing-function solution to 1e-8 at 20 amplitudes from full stick to gross slip.
 
 The AFT error is O(Nt⁻²) (kinks of the hysteresis between samples); Nt = 2¹⁵ brings it below
 1e-8 relative, and the solver tolerance is 1e-12.

@@ -1,4 +1,4 @@
-"""E-EBM against the forced response on the 1-DoF Jenkins oscillator, H = 1 (test 6).
+"""E-EBM against the forced response on the 1-DoF Jenkins oscillator, H = 1.
 
 With friction-only damping the E-EBM is exact: the forcing it predicts at the FRF's peak
 amplitude equals the FRF's forcing. With structural damping ζs the forced peak sits slightly off

@@ -1,4 +1,4 @@
-"""EPMC energy identity at every converged point of a multi-DoF case (test 4, DESIGN §7):
+"""EPMC energy identity at every converged point of a multi-DoF case (docs/design.md §7):
 
     ξ π ω Σ_h h² Q_hᴴ M_h Q_h  =  Σ_pairs ∮ λ · ḋ dt   (AFT),
 

@@ -1,4 +1,4 @@
-"""Gauge of zero-frequency modes (test 8): a free mass held only by friction on an oscillator.
+"""Gauge of zero-frequency modes: a free mass held only by friction on an oscillator.
 
 While the contact sticks, the free body's mean position is determined (its equilibrium is a
 regular equation); once the contact has lost its memory the position is undetermined, the

@@ -1,4 +1,4 @@
-"""Analytical Jacobians against central finite differences, to 1e-6 relative (test 2): the
+"""Analytical Jacobians against central finite differences, to 1e-6 relative: the
 contact AFT (both laws) in stick, slip, separation and mixed states, and the full condensed EPMC
 and forced residuals (explicit pole modes, rigid-body gauge, complex cyclic matrices)."""
 import zlib

@@ -1,4 +1,4 @@
-"""Reduced model against the full FE cyclic model (DESIGN §7 Craig–Bampton check).
+"""Reduced model against the full FE cyclic model (docs/design.md §7 Craig–Bampton check).
 
 At the campaign's settings (reduction section of config.yaml) the first 10 eigenfrequencies of ND 0, 3, 6, 9, contact free and
 stuck, match ``modal.cyclic_modes`` of the full sector to 0.1 %: on the coarse quadratic mesh for

@@ -1,4 +1,4 @@
-"""Test 1: analytic 1-D oracles (spring chains against a rigid wall / a floating body), both laws.
+"""Analytic 1-D oracles (spring chains against a rigid wall / a floating body), both laws.
 
 Chain with springs k_j, node 0 clamped, loads f_i: the tip moves u_free = Σ_i f_i c_i freely
 (c_i = Σ_{j≤i} 1/k_j, tip flexibility c). Against a wall at gap g0 the tip force is

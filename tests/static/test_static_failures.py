@@ -1,4 +1,4 @@
-"""Test 5: absurd physics ends with status ≠ 0 and a reason, never an exception; bad argument
+"""Absurd physics ends with status ≠ 0 and a reason, never an exception; bad argument
 shapes raise ValueError naming the argument. Also the Lagrange fallback path (augmented
 Lagrangian) and the round-off guard."""
 import numpy as np

@@ -1,4 +1,4 @@
-"""Test 3: the penalty solution converges to the exact (Lagrange) one as kn → ∞, error ~ 1/kn.
+"""The penalty solution converges to the exact (Lagrange) one as kn → ∞, error ~ 1/kn.
 
 Two blocks with a curved initial gap (partial contact). Once kn is large enough for the active
 set to be the exact one, N_pen − N_exact is linear in the contact compliance 1/kn: the observed

@@ -1,4 +1,4 @@
-"""Static contact on the real sector (issue 3): rigid-groove and free-ring oracles, KKT, scaling."""
+"""Static contact on the real sector: rigid-groove and free-ring oracles, KKT, scaling."""
 import copy
 
 import numpy as np

@@ -1,4 +1,4 @@
-"""Contact calibration (issue 5, docs/calibration.md): objective, plausible ranges, a physical check."""
+"""Contact calibration (docs/calibration.md): objective, plausible ranges, a physical check."""
 import numpy as np
 import pytest
 
@@ -53,7 +53,7 @@ def test_metrics_peak_refinement_on_a_known_curve():
 
 
 def _one_dof_backbone(mu, alpha):
-    """1-DoF oscillator with one preloaded Jenkins element (DESIGN §7 oracle system)."""
+    """1-DoF oscillator with one preloaded Jenkins element (docs/design.md §7 oracle system)."""
     from ringdamper.nonlinear.friction import FrictionContacts
     from ringdamper.nonlinear.eebm import eebm
     from ringdamper.nonlinear.epmc import epmc

@@ -22,6 +22,7 @@ include: "workflow/rules/modal.smk"
 include: "workflow/rules/static.smk"
 include: "workflow/rules/reduction.smk"
 include: "workflow/rules/dnnm.smk"
+include: "workflow/rules/studies.smk"
 
 
 rule all:

@@ -82,3 +82,27 @@ def log_to(path) -> None:
     sys.stderr = open(path, "w", buffering=1)
     logging.basicConfig(stream=sys.stderr, level=logging.INFO, format="%(name)s: %(message)s",
                         force=True)
+
+
+def write_csv(rows: list[dict], path) -> None:
+    """Rows of a study as CSV: the union of the rows' keys as columns, floats to 6 significant digits,
+    lists as space-separated values."""
+    import csv
+
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+
+    def cell(v):
+        if isinstance(v, float):
+            return f"{v:.6g}"
+        if isinstance(v, (list, tuple, np.ndarray)):
+            return " ".join(str(cell(x)) for x in np.asarray(v).tolist())
+        return v
+
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=keys)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: cell(v) for k, v in r.items()})

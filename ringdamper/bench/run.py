@@ -147,7 +147,7 @@ def _static_synthetic(config: dict) -> dict:
 def _mesh_convergence(config: dict) -> dict:
     from ringdamper.studies.mesh_convergence import mesh_study
 
-    return {"levels": mesh_study(config)}
+    return {"levels": mesh_study(config, config["studies"]["mesh_convergence"]["levels"])}
 
 
 BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "geometry_chain": _geometry_chain,

@@ -19,25 +19,28 @@ in (ln q, ζ), Δ* = 1 − ω(q*)/ω_stuck the relative frequency drop at q*, we
 off on any one quantity costs 1), and P_shape = 10 per violated shape rule (:data:`SHAPE_RULES`):
 the frequency must not rise above the stuck frequency by more than 0.05 %, the damping peak must be
 inside the window (not at its last point), and at least 80 % of the grid points must be usable
-(status 0 or 3). The study (:func:`main`, docs/calibration.md): a coarse grid over (μ, kn, kt/kn) at
-H = 1, a refined grid around the best coarse row, then the best sets at H = 1, 3, 5 (harmonic
-truncation). Result in ``config.yaml``: μ = 0.7, kn/area = 7e10 N/m³, kt/area = 5.6e10 N/m³.
+(status 0 or 3). The study (:func:`run_stage`, rules of ``make studies``, docs/calibration.md): a
+coarse grid over (μ, kn, kt/kn) at H = 1, a refined grid around the best coarse row, then the chosen
+set (``contact:`` of the configuration) and the runner-up at several H (harmonic truncation). The
+grids, the α grid and the runner-up are the ``studies.contact_calibration`` section of the
+configuration.
 """
 
 from __future__ import annotations
 
 import copy
-import csv
 import itertools
 import time
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from ringdamper.nonlinear.normalisation import PAPER_NORMALISED_FREQUENCY, normalised_frequency
+
 # Paper §2.6 / Fig. 8 on the default geometry.
 PAPER_TARGET = {"zeta_max": 0.15e-2,                 # maximum modal damping ratio
                 "q_at_zeta_max": 0.164e-3,           # |q_res,z| (m) at ζ_max
-                "drop_at_zeta_max": (2.195 - 2.187) / 2.195}   # 1 − ω0(ζ_max)/ω0(0) = 0.364 %
+                "drop_at_zeta_max": 1 - 2.187 / PAPER_NORMALISED_FREQUENCY}   # 1 − ω0(ζ_max)/ω0(0) = 0.364 %
 WEIGHTS = {"zeta_max": 1.0, "q_at_zeta_max": 1.0, "drop_at_zeta_max": 1.0}
 SHAPE_PENALTY = 10.0
 SHAPE_RULES = {"max_rise": 5e-4,        # ω/ω_stuck − 1 may not exceed this anywhere on the backbone
@@ -52,18 +55,7 @@ PLAUSIBLE = {
 }
 
 # α grid of the study (kg^0.5 m): |q_res,z| from ~5e-3 mm to ~0.9 mm on the default ring.
-STUDY_ALPHA = (2.0e-6, 4.0e-4, 36)
 Q_MAX = 0.45e-3   # m: the metrics look at |q_res,z| <= 0.45 mm (paper Table 3: up to 0.44 mm)
-COARSE_GRID = {"friction_coefficient": (0.2, 0.3, 0.5, 0.8),
-               "normal_stiffness_per_area": (3.0e10, 1.0e11, 3.0e11, 1.0e12),
-               "kt_over_kn": (0.5, 1.0)}
-# Chosen after the coarse table (docs/calibration.md): around its best row (0.8, 1e11, 0.5). Across
-# the coarse grid the drop at the damping peak is ~1.65 x zeta_max (paper: 2.4), so the objective's
-# compromise is zeta_max ~ 0.18 %, drop ~ 0.30 %; kt sets that level, mu then places the peak
-# (q* roughly proportional to mu).
-REFINE_GRID = {"friction_coefficient": (0.6, 0.7, 0.8),
-               "normal_stiffness_per_area": (7.0e10, 1.0e11, 1.4e11),
-               "kt_over_kn": (0.5, 0.65, 0.8)}
 
 
 @dataclass
@@ -192,8 +184,9 @@ class DefaultRing:
         return static_dataset(self.model, result, prob, (0.0, 0.0, 0.0), cfg["operation"]["speed_rpm"])
 
 
-def run_trial(ring: DefaultRing, contact: dict, H: int = 1, alpha=STUDY_ALPHA, nt: int | None = None):
-    """One backbone of the default ring: returns (row dict, dnnm dataset)."""
+def run_trial(ring: DefaultRing, contact: dict, H: int, alpha, nt: int | None = None):
+    """One backbone of the default ring on the α grid ``alpha`` = (first, last, count): returns
+    (row dict, dnnm dataset)."""
     from ringdamper.nonlinear.stage import contacts_from_static, run_dnnm, structure_from_reduced, target_stuck_frequency
 
     t0 = time.perf_counter()
@@ -227,11 +220,11 @@ def _init_worker(config, reduced_path, target_hz):
 
 
 def _worker(args):
-    contact, H = args
+    contact, H, alpha = args
     try:
-        row, ds = run_trial(_RING, contact, H)
+        row, ds = run_trial(_RING, contact, H, alpha)
         curve = {"alpha": ds.amplitude.values, "q": ds.q_res_z.values,
-                 "omega0": 2.195 * 2 * np.pi * ds.frequency.values / ds.attrs["omega_stuck"],
+                 "omega0": normalised_frequency(2 * np.pi * ds.frequency.values, ds.attrs["omega_stuck"]),
                  "zeta": ds.zeta.values, "gamma": ds.gamma.values, "status": ds.status.values}
     except Exception as err:  # a failing trial is a result of the study, not a crash of it
         row = {"H": H, **contact, "objective": float("inf"), "error": f"{type(err).__name__}: {err}"}
@@ -239,12 +232,12 @@ def _worker(args):
     return row, curve
 
 
-def run_many(config, reduced_path, target_hz, contacts, H=1, processes=2):
-    """Trials in ``processes`` worker processes (each loads the default ring once); returns
-    ``[(row, curve)]`` in the order of ``contacts``."""
+def run_many(config, reduced_path, target_hz, trials, alpha, processes=2):
+    """``trials`` = [(contact section, H)] in ``processes`` worker processes (each loads the default
+    ring once); returns ``[(row, curve)]`` in the order of ``trials``."""
     import multiprocessing as mp
 
-    jobs = [(c, H) for c in contacts]
+    jobs = [(c, H, tuple(alpha)) for c, H in trials]
     init = (config, reduced_path, target_hz)
     if processes <= 1:
         _init_worker(*init)
@@ -253,25 +246,37 @@ def run_many(config, reduced_path, target_hz, contacts, H=1, processes=2):
         return pool.map(_worker, jobs, chunksize=1)
 
 
-def coarse_contacts(grid: dict = COARSE_GRID) -> list[dict]:
-    return [contact_section(mu, kn, r) for mu, kn, r in itertools.product(
-        grid["friction_coefficient"], grid["normal_stiffness_per_area"], grid["kt_over_kn"])]
+def grid_contacts(grid: dict) -> list[dict]:
+    """Every ``contact:`` section of a grid over (μ, kn per area, kt/kn), inside :data:`PLAUSIBLE`."""
+    return [c for c in (contact_section(mu, kn, r) for mu, kn, r in itertools.product(
+        grid["friction_coefficient"], grid["normal_stiffness_per_area"], grid["kt_over_kn"]))
+        if in_plausible_range(c)]
 
 
-def refined_contacts(grid: dict = None) -> list[dict]:
-    """The refinement grid (:data:`REFINE_GRID`), clipped to :data:`PLAUSIBLE`."""
-    return [c for c in coarse_contacts(REFINE_GRID if grid is None else grid) if in_plausible_range(c)]
+STAGES = ("coarse", "refine", "harmonics_A", "harmonics_B")
 
 
-def write_table(rows: list[dict], path) -> None:
-    keys = []
-    for r in rows:
-        keys += [k for k in r if k not in keys]
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=keys)
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+def stage_trials(config: dict, stage: str) -> list[tuple[dict, int]]:
+    """(contact section, H) of every trial of a stage of the study: the ``coarse`` and ``refine``
+    grids at H = 1; ``harmonics_A`` the chosen set (``contact:``), ``harmonics_B`` the runner-up,
+    at each H of ``harmonics``."""
+    study = config["studies"]["contact_calibration"]
+    if stage in ("coarse", "refine"):
+        return [(c, 1) for c in grid_contacts(study[stage])]
+    if stage == "harmonics_A":
+        chosen = config["contact"]
+    elif stage == "harmonics_B":
+        r = study["runner_up"]
+        chosen = contact_section(r["friction_coefficient"], r["normal_stiffness_per_area"], r["kt_over_kn"])
+    else:
+        raise ValueError(f"stage must be one of {STAGES}, got {stage!r}")
+    return [(dict(chosen), int(H)) for H in study["harmonics"]]
+
+
+def run_stage(config: dict, reduced_path, target_hz: float, stage: str, processes: int = 2):
+    """All trials of ``stage`` (:func:`stage_trials`) on the study's α grid: ``[(row, curve)]``."""
+    alpha = config["studies"]["contact_calibration"]["amplitudes"]
+    return run_many(config, reduced_path, target_hz, stage_trials(config, stage), alpha, processes)
 
 
 def contact_states(backbone, contacts) -> dict:
@@ -299,7 +304,7 @@ def contact_states(backbone, contacts) -> dict:
     return out
 
 
-def diagnose(ring: DefaultRing, contact: dict, H: int = 1, alpha=STUDY_ALPHA):
+def diagnose(ring: DefaultRing, contact: dict, H: int, alpha):
     """EPMC backbone of the default ring with per-point contact states (for the study's figures)."""
     from ringdamper.nonlinear.stage import contacts_from_static, structure_from_reduced, target_stuck_frequency
     from ringdamper.nonlinear.eebm import eebm
@@ -329,57 +334,6 @@ def save_curves(results, path) -> None:
     np.savez_compressed(path, **out)
 
 
-def main(argv=None) -> None:
-    """The study: ``python -m ringdamper.studies.contact_calibration coarse|refine|harmonics|figures``.
-
-    coarse: :data:`COARSE_GRID` at H = 1; refine: :data:`REFINE_GRID` at H = 1; harmonics: the
-    ``--mu --kn --ratio`` set at ``--harmonics`` (default H = 1, 3, 5), outputs suffixed ``--tag``;
-    figures: :func:`figures`. Rows go to ``docs/calibration/<stage>.csv``, curves to
-    ``results/calibration/<stage>.npz`` (git-ignored). Run from the repository root.
-    """
-    import argparse
-    from pathlib import Path
-
-    import yaml
-
-    from ringdamper.config import load_config
-
-    p = argparse.ArgumentParser(description=main.__doc__)
-    p.add_argument("stage", choices=("coarse", "refine", "harmonics", "figures"))
-    p.add_argument("--config", default="config.yaml")
-    p.add_argument("--reduced", default="/work/main/results/geometry/t013/reduced.nc")
-    p.add_argument("--resonance", default="/work/main/results/modal/resonance.yaml")
-    p.add_argument("--processes", type=int, default=2)
-    p.add_argument("--mu", type=float)
-    p.add_argument("--kn", type=float)
-    p.add_argument("--ratio", type=float)
-    p.add_argument("--harmonics", default="1,3,5")
-    p.add_argument("--tag", default="", help="suffix of the output names")
-    a = p.parse_args(argv)
-    if a.stage == "figures":
-        figures()
-        return
-    config = load_config(a.config)
-    target_hz = yaml.safe_load(open(a.resonance))["frequency_hz"]
-    table_dir, curve_dir = Path("docs/calibration"), Path("results/calibration")
-    table_dir.mkdir(parents=True, exist_ok=True)
-    curve_dir.mkdir(parents=True, exist_ok=True)
-    t0 = time.perf_counter()
-    if a.stage == "coarse":
-        results = run_many(config, a.reduced, target_hz, coarse_contacts(), 1, a.processes)
-    elif a.stage == "refine":
-        results = run_many(config, a.reduced, target_hz, refined_contacts(), 1, a.processes)
-    else:
-        c = contact_section(a.mu, a.kn, a.ratio)
-        results = []
-        for H in (int(h) for h in a.harmonics.split(",")):
-            results += run_many(config, a.reduced, target_hz, [c], H, 1)
-    name = a.stage + (f"_{a.tag}" if a.tag else "")
-    write_table([r for r, _ in results], table_dir / f"{name}.csv")
-    save_curves(results, curve_dir / f"{name}.npz")
-    for r, _ in sorted(results, key=lambda rc: rc[0]["objective"])[:10]:
-        print({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in r.items()})
-    print(f"{len(results)} trials, {time.perf_counter() - t0:.0f} s")
 
 
 def plot_backbones(curves: list[tuple[str, dict]], path, q_max: float = 1.0e-3) -> None:
@@ -413,36 +367,38 @@ def plot_backbones(curves: list[tuple[str, dict]], path, q_max: float = 1.0e-3) 
 
 
 def curve_of(npz_path, mu: float, kn: float, ratio: float, H: int = 1) -> dict:
-    """One backbone from a stage's .npz (see :func:`save_curves`)."""
+    """One backbone from a stage's .npz (see :func:`save_curves`), None if the stage lacks it."""
     d = np.load(npz_path)
     ok = (np.isclose(d["friction_coefficient"], mu) & np.isclose(d["normal_stiffness_per_area"], kn)
           & np.isclose(d["tangential_stiffness_per_area"], ratio * kn) & (d["H"] == H))
+    if not ok.any():
+        return None
     i = int(np.flatnonzero(ok)[0])
     return {k: d[k][i] for k in ("alpha", "q", "omega0", "zeta", "gamma", "status")}
 
 
-def figures(out_dir="docs/figures", curve_dir="results/calibration") -> None:
-    """The study's figures: the chosen default backbone at H = 1, 3, 5 with H = 1 neighbours."""
+def figures(config: dict, curves_dir, backbone_png, examples_png) -> None:
+    """The study's figures: the chosen backbone (``contact:``) at each H of the study with its H = 1
+    neighbours of the refinement grid (``backbone_png``), and the chosen H = 1 backbone against the
+    ``example_curves`` of the coarse grid (``examples_png``)."""
     from pathlib import Path
 
-    out, cd = Path(out_dir), Path(curve_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    chosen = (0.7, 7e10, 0.8)
-    curves = [("chosen: mu 0.7, kn 7e10, kt/kn 0.8, H=3", curve_of(cd / "harmonics_A.npz", *chosen, H=3)),
-              ("chosen, H=1", curve_of(cd / "harmonics_A.npz", *chosen, H=1)),
-              ("chosen, H=5", curve_of(cd / "harmonics_A.npz", *chosen, H=5)),
-              ("mu 0.6 (H=1)", curve_of(cd / "refine.npz", 0.6, 7e10, 0.8)),
-              ("mu 0.8 (H=1)", curve_of(cd / "refine.npz", 0.8, 7e10, 0.8)),
-              ("kn 1e11, kt/kn 0.5 (H=1)", curve_of(cd / "refine.npz", 0.7, 1e11, 0.5)),
-              ("kn 1.4e11, kt/kn 0.8 (H=1)", curve_of(cd / "refine.npz", 0.7, 1.4e11, 0.8))]
-    plot_backbones(curves, out / "calibration_default_backbone.png")
-    others = [("chosen, H=1", curves[1][1]),
-              ("old: mu 0.3, kn=kt 1e12", curve_of(cd / "coarse.npz", 0.3, 1e12, 1.0)),
-              ("mu 0.8, kn=kt 1e11", curve_of(cd / "coarse.npz", 0.8, 1e11, 1.0)),
-              ("mu 0.5, kn 3e10, kt/kn 0.5", curve_of(cd / "coarse.npz", 0.5, 3e10, 0.5)),
-              ("mu 0.2, kn 3e10, kt/kn 0.5", curve_of(cd / "coarse.npz", 0.2, 3e10, 0.5))]
-    plot_backbones(others, out / "calibration_coarse_examples.png")
-
-
-if __name__ == "__main__":
-    main()
+    cd = Path(curves_dir)
+    c = config["contact"]
+    chosen = (c["friction_coefficient"], c["normal_stiffness_per_area"],
+              c["tangential_stiffness_per_area"] / c["normal_stiffness_per_area"])
+    study = config["studies"]["contact_calibration"]
+    label = f"chosen: mu {chosen[0]:g}, kn {chosen[1]:g}, kt/kn {chosen[2]:g}"
+    curves = [(f"{label}, H={H}", curve_of(cd / "harmonics_A.npz", *chosen, H=H)) for H in study["harmonics"]]
+    neighbours = [(mu, kn, r) for mu, kn, r in itertools.product(*(study["refine"][k] for k in (
+        "friction_coefficient", "normal_stiffness_per_area", "kt_over_kn")))
+        if sum(a != b for a, b in zip((mu, kn, r), chosen)) == 1]
+    for mu, kn, r in neighbours:
+        curve = curve_of(cd / "refine.npz", mu, kn, r)
+        if curve is not None:
+            curves.append((f"mu {mu:g}, kn {kn:g}, kt/kn {r:g} (H=1)", curve))
+    plot_backbones([cv for cv in curves if cv[1] is not None], backbone_png)
+    others = [(f"{label}, H=1", curve_of(cd / "harmonics_A.npz", *chosen, H=1))]
+    others += [(f"mu {mu:g}, kn {kn:g}, kt/kn {r:g}", curve_of(cd / "coarse.npz", mu, kn, r))
+               for mu, kn, r in study["example_curves"]]
+    plot_backbones([cv for cv in others if cv[1] is not None], examples_png)

@@ -34,7 +34,7 @@ def crossing_speed(config: dict, speed_factors=CALIBRATION_SPEED_FACTORS) -> tup
     return w * 60 / (2 * np.pi), f
 
 
-def calibrate_hub_thickness(config: dict, bracket=(0.025, 0.045), xtol=1e-5) -> tuple[float, float]:
+def calibrate_hub_thickness(config: dict, bracket, xtol: float) -> tuple[float, float]:
     """Hub thickness (m) putting the crossing at the operating speed, and the speed reached (rpm)."""
     target = config["operation"]["speed_rpm"]
 
@@ -45,3 +45,16 @@ def calibrate_hub_thickness(config: dict, bracket=(0.025, 0.045), xtol=1e-5) -> 
 
     t = brentq(miss, *bracket, xtol=xtol)
     return t, miss(t) + target
+
+
+def study(config: dict) -> dict:
+    """The calibration with the ``studies.hub_calibration`` settings (``bracket`` in m, ``xtol``),
+    against the configured value and its crossing."""
+    settings = config["studies"]["hub_calibration"]
+    t_hub, rpm = calibrate_hub_thickness(config, settings["bracket"], settings["xtol"])
+    rpm_configured, hz_configured = crossing_speed(config)
+    return {"hub_thickness_m": float(t_hub), "crossing_speed_rpm": float(rpm),
+            "operating_speed_rpm": float(config["operation"]["speed_rpm"]),
+            "configured_hub_thickness_m": float(config["geometry"]["disk"]["hub_thickness"]),
+            "configured_crossing_speed_rpm": float(rpm_configured),
+            "configured_crossing_frequency_hz": float(hz_configured)}

@@ -45,8 +45,9 @@ def target_frequency(config: dict) -> dict:
             "wall_time_s": time.perf_counter() - start}
 
 
-def mesh_study(config: dict, levels=((1, 1), (2, 1), (3, 1), (1, 2), (2, 2))) -> list[dict]:
-    """(refinement factor, element order) levels; errors relative to the finest quadratic level."""
+def mesh_study(config: dict, levels) -> list[dict]:
+    """(refinement factor, element order) ``levels`` (``studies.mesh_convergence.levels`` of the
+    configuration); errors relative to the finest quadratic level."""
     rows = [dict(order=order, factor=factor, **target_frequency(refined(config, factor, order)))
             for factor, order in levels]
     reference = max((r for r in rows if r["order"] == 2), key=lambda r: r["dofs"])["frequency_hz"]

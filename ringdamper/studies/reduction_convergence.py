@@ -121,30 +121,17 @@ def markdown_table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
-def main(argv=None) -> None:
-    """``python -m ringdamper.studies.reduction_convergence``: the study on the default ring, as a table."""
-    import argparse
-
-    from ringdamper.config import load_config
+def study(config: dict) -> list[dict]:
+    """The study on the default ring with the ``studies.reduction_convergence`` settings
+    (``n_fixed_interface_modes``, ``n_interface_modes``: the values tried; ``band``: the receptance
+    frequencies as fractions of the target's stuck frequency), contact stuck on every pair."""
+    from ringdamper.fem.contact_law import stuck_pair_stiffness
     from ringdamper.fem.model import build_model
     from ringdamper.geometry.sector import build_sector
-    from ringdamper.fem.contact_law import stuck_pair_stiffness
 
-    p = argparse.ArgumentParser(description=main.__doc__)
-    p.add_argument("--config", default=None)
-    p.add_argument("--kappa", type=float, nargs=3, default=(0.0, 0.0, 0.0))
-    p.add_argument("--n-fi", type=int, nargs="+", default=[10, 20, 40, 60, 80, 120, 160])
-    p.add_argument("--n-if", type=int, nargs="+", default=[10, 20, 40, 60, 90])
-    p.add_argument("--band", type=float, nargs="+", default=[0.98, 0.99, 0.996, 1.0])
-    a = p.parse_args(argv)
-    cfg = load_config(a.config) if a.config else load_config()
-    model = build_model(build_sector(cfg, a.kappa), cfg)
-    kn, kt = stuck_pair_stiffness(model.pairs.area, cfg["contact"])
-    rows = convergence_study(model, cfg["operation"]["engine_order"], kn, kt, a.n_fi, a.n_if,
-                             band=tuple(a.band))
-    print(f"target {rows[0]['target_hz']:.3f} Hz (stuck); receptance at {a.band} x target")
-    print(markdown_table(rows))
-
-
-if __name__ == "__main__":
-    main()
+    s = config["studies"]["reduction_convergence"]
+    model = build_model(build_sector(config, (0.0, 0.0, 0.0)), config)
+    kn, kt = stuck_pair_stiffness(model.pairs.area, config["contact"])
+    return convergence_study(model, config["operation"]["engine_order"], kn, kt,
+                             s["n_fixed_interface_modes"], s["n_interface_modes"],
+                             target_family=config["modal"]["target_family"], band=tuple(s["band"]))

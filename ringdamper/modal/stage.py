@@ -2,8 +2,11 @@
 
 Run once on the default ring. The contact is linearised from the static contact state: pairs with
 N0 > 0 stuck (kn, kt springs), pairs with an open gap free; without a static state every pair is
-taken as stuck. The datasets say which in their ``contact_state`` attribute. The normalised frequency is omega0 = 2.195 omega / omega_stuck,default (docs/design.md §2), with
-omega_stuck,default the target mode's frequency at the crossing speed.
+taken as stuck (the stuck linearisation of ``fem.contact_law``). The datasets say which in their
+``contact_state`` attribute. The ND diagram's normalised frequency is 2.195 f / f_cross
+(docs/design.md §2, *Frequency normalisation*), with f_cross the FE model's target-mode frequency at
+the crossing speed (``reference_frequency_hz``); the dNNM stage normalises by the reduced model's
+stuck frequency instead (``modal/stuck_default.yaml``).
 """
 
 from __future__ import annotations

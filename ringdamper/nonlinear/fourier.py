@@ -1,6 +1,6 @@
 """Fourier operators of the harmonic balance (real cosine/sine unknowns, AFT sampling).
 
-Convention used everywhere in :mod:`ringdamper.hbm` (docs/nonlinear_core.md §1)::
+Convention used everywhere in :mod:`ringdamper.nonlinear` (docs/nonlinear_core.md §1)::
 
     x(τ) = c_0 + Σ_{h=1..H} [ c_{2h-1} cos(hτ) + c_{2h} sin(hτ) ],      τ = ω t,
     X_0 = c_0,   X_h = c_{2h-1} − i c_{2h}   ⇒   x(τ) = Re Σ_{h=0..H} X_h e^{ihτ},

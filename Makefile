@@ -7,7 +7,7 @@ CORES  ?= 2
 # one BLAS/OpenMP thread per process: jobs run side by side on a 2-core machine
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 
-.PHONY: campaign test bench report lint clean
+.PHONY: campaign test bench studies report lint clean
 
 $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV) || python3 -m venv $(VENV)
@@ -23,6 +23,12 @@ test: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python -m ringdamper.bench --out results/benchmarks
+
+# the studies behind the model's choices (config.yaml `studies:`), then their committed tables and figures
+studies: $(STAMP)
+	$(BIN)/snakemake --cores $(CORES) --keep-going studies
+	cp results/studies/contact_calibration/*.csv docs/calibration/
+	cp results/studies/contact_calibration/*.png docs/figures/
 
 report: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --report results/report.html

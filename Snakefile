@@ -1,4 +1,4 @@
-# ringdamper: the design campaign of friction ring dampers as a Snakemake DAG (DESIGN §1).
+# ringdamper: the design campaign of friction ring dampers as a Snakemake DAG (docs/design.md §1).
 import sys
 from pathlib import Path
 
@@ -22,11 +22,13 @@ include: "workflow/rules/modal.smk"
 include: "workflow/rules/static.smk"
 include: "workflow/rules/reduction.smk"
 include: "workflow/rules/dnnm.smk"
+include: "workflow/rules/studies.smk"
 
 
 rule all:
     input:
         f"{RESULTS}/samples.csv",
+        expand(f"{RESULTS}/geometry/{{gid}}/mesh.vtu", gid=geometry_ids()),
         expand(f"{RESULTS}/geometry/{{gid}}/dnnm.nc", gid=geometry_ids()),
         f"{RESULTS}/modal/resonance.yaml",
         f"{RESULTS}/figures/static_contact_maps.png",

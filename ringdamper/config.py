@@ -1,4 +1,4 @@
-"""Load and validate the campaign configuration (DESIGN §5).
+"""Load and validate the campaign configuration (docs/design.md §5).
 
 Validation happens before any job runs: the JSON schema of ``workflow/schemas/`` (types, ranges,
 closed objects), then the cross-field rules a schema cannot express (the ring must fit under the rim
@@ -65,7 +65,7 @@ def _schema_errors(config: dict) -> list[str]:
 
 
 def _geometry_errors(config: dict) -> list[str]:
-    """Cross-field rules of the sector geometry (DESIGN §2)."""
+    """Cross-field rules of the sector geometry (docs/design.md §2)."""
     g = config["geometry"]
     blade, disk, ring = g["blade"], g["disk"], g["ring"]
     errors = []

@@ -1,4 +1,4 @@
-"""File contracts between the stages (DESIGN §4), in one place.
+"""File contracts between the stages (docs/design.md §4), in one place.
 
 NetCDF through xarray: SI units, and every data variable and coordinate carries ``units`` and
 ``long_name`` (checked on write). Meshes and fields for ParaView through meshio (VTU, 27-node bricks
@@ -71,3 +71,38 @@ def mesh_fields(model) -> tuple[dict, dict]:
     return ({"body": model.node_body, "pair_id": pair_id, "contact_normal": normal,
              "forcing_node": forcing},
             {"part": model.geometry.part})
+
+
+def log_to(path) -> None:
+    """Send stderr and the package's ``logging`` records (INFO and above) to the rule's log file."""
+    import logging
+    import sys
+
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    sys.stderr = open(path, "w", buffering=1)
+    logging.basicConfig(stream=sys.stderr, level=logging.INFO, format="%(name)s: %(message)s",
+                        force=True)
+
+
+def write_csv(rows: list[dict], path) -> None:
+    """Rows of a study as CSV: the union of the rows' keys as columns, floats to 6 significant digits,
+    lists as space-separated values."""
+    import csv
+
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+
+    def cell(v):
+        if isinstance(v, float):
+            return f"{v:.6g}"
+        if isinstance(v, (list, tuple, np.ndarray)):
+            return " ".join(str(cell(x)) for x in np.asarray(v).tolist())
+        return v
+
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=keys)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: cell(v) for k, v in r.items()})

@@ -1,9 +1,12 @@
 """Rule script: dnnm.nc of the reference rings -> backbones (Figs. 8, 12) and E_d map (Fig. 9b)."""
-from ringdamper.io import read_netcdf
+import logging
+
+from ringdamper.io import log_to, read_netcdf
 from ringdamper.plots.dnnm import plot_backbones, plot_energy_map
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
+log_to(sm.log[0])
 datasets = {label: read_netcdf(path) for label, path in zip(sm.params.labels, sm.input.dnnm)}
 plot_backbones(datasets, sm.output.backbones)
 plot_energy_map(datasets["default"], read_netcdf(sm.input.default_static), sm.output.energy)
-open(sm.log[0], "w").close()
+logging.getLogger("backbone_figures").info("rings %s -> %s", list(datasets), list(sm.output))

@@ -1,11 +1,13 @@
 """Rule script: default ring -> ND diagram, Campbell diagram, resonance, figures, mode-shape VTUs."""
+import logging
 from pathlib import Path
 
-from ringdamper.io import mesh_fields, read_netcdf, write_netcdf, write_vtu, write_yaml
-from ringdamper.modal_stage import run_modal_stage, target_mode_shapes
+from ringdamper.io import log_to, mesh_fields, read_netcdf, write_netcdf, write_vtu, write_yaml
+from ringdamper.modal.stage import run_modal_stage, target_mode_shapes
 from ringdamper.plots.modal import plot_campbell, plot_mode_shapes, plot_nd_diagram
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
+log_to(sm.log[0])
 static = read_netcdf(sm.input.static)
 if static.attrs["status"] != 0:
     raise RuntimeError(f"the default ring's static solve failed: {static.attrs['reason']}")
@@ -22,5 +24,4 @@ out = Path(sm.output.modes_vtu)
 for j, (freq, family, u) in enumerate(shapes):
     write_vtu(res.model, out / f"mode{j}_{family}.vtu", point_data={**points, "displacement": u},
               cell_data=cells)
-with open(sm.log[0], "w") as log:
-    log.write(f"resonance: {res.resonance}\n")
+logging.getLogger("modal").info("resonance: %s", res.resonance)

@@ -6,8 +6,13 @@ multiplied by e^{i sigma}, so on the right cut u_R = e^{i sigma} R_z(a) u_L. The
 all DoFs but the right cut and the clamped ones; u = T(sigma) q and the sector matrices of ND k are
 K_k = T^H K T, M_k = T^H M T (complex Hermitian; real for sigma = 0 and pi).
 
-Travelling-wave convention of the nonlinear stage (DESIGN §3.4): harmonic h of an EO excitation uses
-sigma_h = -2 pi h EO / N, i.e. u_{j+1} = e^{i sigma_h} u_j (``ringdamper.travelling_wave``).
+Two phases, two names. ``nodal_diameter_phase(k, N)`` = 2 pi k / N is the phase of a standing nodal
+diameter k (the modal analysis). ``interblade_phase(h, N, EO)`` is the travelling-wave convention
+of the reduction and the nonlinear stage: harmonic h of sector j equals harmonic h of the reference
+sector times e^{i sigma_h j}, sigma_h = -2 pi h EO / N wrapped to (-pi, pi], i.e. the sector fields
+obey u_{j+1} = e^{i sigma_h} u_j (Mead's constraint with that phase). Harmonic h lives in nodal
+diameter ``nodal_diameter(h, N, EO)`` = h EO mod N folded to 0..N/2; h = 0 is ND 0 (real). For the
+same ND the two phases are complex conjugates (opposite signs), i.e. the same standing mode pair.
 """
 
 from __future__ import annotations
@@ -16,9 +21,21 @@ import numpy as np
 import scipy.sparse as sp
 
 
-def interblade_phase(nd: int, n_sectors: int) -> float:
+def nodal_diameter_phase(nd: int, n_sectors: int) -> float:
     """sigma = 2 pi k / N for nodal diameter k."""
     return 2.0 * np.pi * nd / n_sectors
+
+
+def interblade_phase(h: int, n_sectors: int, engine_order: int) -> float:
+    """sigma_h = -2 pi h EO / N wrapped to (-pi, pi]: harmonic h of an engine-order excitation."""
+    s = -2.0 * np.pi * ((h * engine_order) % n_sectors) / n_sectors
+    return float(s + 2.0 * np.pi if s <= -np.pi else s)
+
+
+def nodal_diameter(h: int, n_sectors: int, engine_order: int) -> int:
+    """Nodal diameter of harmonic h: min(k, N - k) with k = h EO mod N."""
+    k = (h * engine_order) % n_sectors
+    return int(min(k, n_sectors - k))
 
 
 def cyclic_transform(n_dofs: int, left_nodes, right_nodes, fixed_dofs, sector_angle: float,

@@ -5,7 +5,7 @@ the vector DoFs of node i are 3i, 3i+1, 3i+2 (x, y, z). Linear elasticity, lumpe
 the consistent matrices of both bodies (blisk and ring are disconnected in K, coupled only through
 the contact pairs).
 
-Contact pairs (DESIGN §2): one per node of the ring's upper surface inside the sector; nodes on the
+Contact pairs (docs/design.md §2): one per node of the ring's upper surface inside the sector; nodes on the
 right cyclic cut are dropped (they are the next sector's left-cut nodes) and their tributary area is
 added to their left partners, so every pair is counted once. Local frame per pair: n = outward normal
 of the ring's upper surface r = R_c + delta1 b(theta) (from the ring towards the blisk), t1
@@ -24,9 +24,10 @@ from skfem import Basis, ElementHex1, ElementHex2, FacetBasis, LinearForm, asm
 
 from ..geometry.sector import BODY_RING, MERGE_TOL, SectorMesh
 from ..geometry.shape import upper_slope
+from .contact_law import spring_diagonal, stuck_pair_stiffness
 from .elasticity import mass_matrix, tangent_stiffness
 
-INTORDER = {1: 3, 2: 5}  # Gauss rule exact for the mass matrix of each order (DESIGN §9)
+INTORDER = {1: 3, 2: 5}  # Gauss rule exact for the mass matrix of each order (docs/design.md §9)
 ELEMENTS = {1: ElementHex1, 2: ElementHex2}
 
 
@@ -196,23 +197,14 @@ def relative_displacement_operator(model: SectorModel) -> sp.csr_matrix:
     return G.tocsr()
 
 
-def pair_stiffness(area, contact_cfg: dict, closed=None) -> tuple[np.ndarray, np.ndarray]:
-    """(kn, kt) per pair (N/m): stiffness per unit area x tributary area; zero where not ``closed``."""
-    area = np.asarray(area, dtype=float)
-    if closed is not None:
-        area = np.where(closed, area, 0.0)
-    return (contact_cfg["normal_stiffness_per_area"] * area,
-            contact_cfg["tangential_stiffness_per_area"] * area)
-
-
-def stuck_contact_stiffness(model: SectorModel, contact_cfg: dict, closed=None) -> sp.csr_matrix:
-    """Linearised stuck contact (springs on the ``closed`` pairs, all pairs by default)."""
-    return contact_stiffness(model, *pair_stiffness(model.pairs.area, contact_cfg, closed))
+def stuck_contact_stiffness(model: SectorModel, contact_cfg: dict, closed=True) -> sp.csr_matrix:
+    """Linearised stuck contact (:func:`~ringdamper.fem.contact_law.stuck_pair_stiffness` on the
+    ``closed`` pairs, all pairs by default)."""
+    return contact_stiffness(model, *stuck_pair_stiffness(model.pairs.area, contact_cfg, closed))
 
 
 def contact_stiffness(model: SectorModel, kn, kt) -> sp.csr_matrix:
     """Stuck linearised contact: G^T diag(kn, kt, kt) G (kn, kt per pair or scalar, N/m)."""
-    m = len(model.pairs)
-    k = np.column_stack([np.broadcast_to(kn, m), np.broadcast_to(kt, m), np.broadcast_to(kt, m)])
+    k = spring_diagonal(kn, kt, len(model.pairs))
     G = relative_displacement_operator(model)
     return (G.T @ sp.diags(k.ravel()) @ G).tocsr()

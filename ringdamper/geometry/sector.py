@@ -1,4 +1,4 @@
-"""Structured hexahedral mesh of one blisk sector and its ring sector (DESIGN §2 "Mesh").
+"""Structured hexahedral mesh of one blisk sector and its ring sector (docs/design.md §2 "Mesh").
 
 Every block is a tensor grid in logical coordinates mapped to Cartesian space (Z = rotation axis,
 the sector centred on the X axis, theta in [-pi/N, pi/N]):

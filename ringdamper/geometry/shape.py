@@ -1,4 +1,4 @@
-"""Ring shape parametrisation (paper §3.1.1, Table 2; DESIGN §2 "Shape parameters").
+"""Ring shape parametrisation (paper §3.1.1, Table 2; docs/design.md §2 "Shape parameters").
 
 kappa_i in [-1, 1] maps piecewise-linearly to the radial offset delta_r of a bump's central node:
 kappa = -1, 0, +1 -> offsets[0], 0, offsets[2]. A bump is the C^1 uniform quadratic B-spline on

@@ -1,4 +1,4 @@
-"""Three-step model reduction of the blisk + ring sector (paper §2.5.1; DESIGN §3.3).
+"""Three-step model reduction of the blisk + ring sector (paper §2.5.1; docs/design.md §3.3).
 
 1. ``craig_bampton``: Craig–Bampton on the real sector (bore clamped), retained = contact pairs,
    blade-tip node, both cyclic faces (``partition``).
@@ -7,10 +7,10 @@
 ``reduced``: the chain, the modal basis, the stuck contact and the reduced.nc contract.
 """
 
-from .reduced import (N_FI, N_HARMONICS, N_IF, ModalBasis, ReducedHarmonic, ReducedSector,
-                      eigenfrequencies, modal_basis, modal_stuck_frequencies, pair_stiffness,
+from .reduced import (ModalBasis, ReducedHarmonic, ReducedSector,
+                      eigenfrequencies, modal_basis, modal_stuck_frequencies,
                       reduce_sector, reduced_dataset, stuck_frequencies, stuck_matrices)
 
-__all__ = ["N_FI", "N_HARMONICS", "N_IF", "ModalBasis", "ReducedHarmonic", "ReducedSector",
-           "eigenfrequencies", "modal_basis", "modal_stuck_frequencies", "pair_stiffness",
+__all__ = ["ModalBasis", "ReducedHarmonic", "ReducedSector",
+           "eigenfrequencies", "modal_basis", "modal_stuck_frequencies",
            "reduce_sector", "reduced_dataset", "stuck_frequencies", "stuck_matrices"]

@@ -1,7 +1,7 @@
 """Step 2 of the reduction: Mead's cyclic constraint per harmonic on the Craig–Bampton model (Mead 1975).
 
 Harmonic h of the EO travelling wave lives in the nodal diameter of inter-sector phase
-sigma_h = ``interblade_phase(h, N, EO)`` (``ringdamper.travelling_wave``): u_{j+1} = e^{i sigma_h} u_j.
+sigma_h = ``interblade_phase(h, N, EO)`` (``ringdamper.fem.cyclic``): u_{j+1} = e^{i sigma_h} u_j.
 On the right cut this reads node by node u_R = e^{i sigma_h} R_z(2 pi / N) u_L, so the right-face
 boundary coordinates of the CB model are eliminated:
 

@@ -1,4 +1,4 @@
-"""Which DoFs of the sector the reduction keeps, and in what role (paper §2.5.1; DESIGN §3.3).
+"""Which DoFs of the sector the reduction keeps, and in what role (paper §2.5.1; docs/design.md §3.3).
 
 The retained (Craig–Bampton boundary) DoFs are
 

@@ -13,8 +13,8 @@ Since the basis is complete, modal summation over it is exact for the reduced mo
 the stuck model of ``modal_stuck_frequencies`` (diag(omega^2) + (B Phi)^H k (B Phi), identity mass)
 has exactly the eigenvalues of ``stuck_matrices``.
 
-Defaults (chosen by the convergence study of docs/reduction.md): ``N_FI`` fixed-interface modes,
-``N_IF`` interface modes, ``N_HARMONICS`` = H.
+The mode counts are the ``reduction`` section of the configuration (chosen by the reduction
+convergence study, docs/reduction.md); :mod:`ringdamper.reduction.stage` reads them.
 """
 
 from __future__ import annotations
@@ -27,18 +27,15 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import xarray as xr
 
-from ..travelling_wave import interblade_phase, nodal_diameter
+from ..fem.cyclic import interblade_phase, nodal_diameter
 from ..fem.model import SectorModel, relative_displacement_operator
-from ..fem.model import pair_stiffness as stiffness_of_pairs  # the one law: per area x area
+from ..fem.contact_law import spring_diagonal
 from ..io import variable
 from .craig_bampton import CraigBampton, craig_bampton
 from .cyclic import mead
 from .interface import reduce_interface
 from .partition import Partition, partition
 
-N_FI = 80          # fixed-interface (Craig–Bampton) modes
-N_IF = 40          # interface modes per harmonic
-N_HARMONICS = 5    # harmonics 0..H
 DIRECTIONS = ("n", "t1", "t2")
 
 
@@ -77,14 +74,17 @@ class ReducedSector:
                 "mead": h.size_mead, "interface": h.size}
 
 
-def reduce_sector(model: SectorModel, engine_order: int, n_harmonics: int = N_HARMONICS,
-                  n_fi: int = N_FI, n_if: int = N_IF, stiffness: sp.spmatrix | None = None,
+def reduce_sector(model: SectorModel, engine_order: int, n_fi: int, n_if: int,
+                  n_harmonics: int | None = None, stiffness: sp.spmatrix | None = None,
                   harmonics=None, keep_modes: bool = False) -> ReducedSector:
-    """Craig–Bampton + Mead + interface reduction of ``model`` for harmonics 0..n_harmonics.
+    """Craig–Bampton (``n_fi`` fixed-interface modes) + Mead + interface reduction (``n_if``
+    interface modes) of ``model`` for harmonics 0..n_harmonics, or the list ``harmonics``.
 
     ``stiffness`` replaces model.K (e.g. a prestressed stiffness; contact springs must NOT be in
-    it: the stuck contact is added on the reduced model). ``harmonics`` overrides 0..n_harmonics.
+    it: the stuck contact is added on the reduced model).
     """
+    if (n_harmonics is None) == (harmonics is None):
+        raise ValueError("give exactly one of n_harmonics and harmonics")
     t0 = time.perf_counter()
     K = model.K if stiffness is None else stiffness
     part = partition(model)
@@ -120,20 +120,9 @@ def reduce_harmonics(model: SectorModel, part: Partition, cb: CraigBampton, engi
 
 # --- stuck contact -------------------------------------------------------------------------------
 
-def pair_stiffness(area, N0, contact_cfg: dict) -> tuple[np.ndarray, np.ndarray]:
-    """kn, kt per pair (N/m) of the linearised stuck contact: stiffness per area x area where N0 > 0,
-    zero on open pairs."""
-    return stiffness_of_pairs(area, contact_cfg, closed=np.asarray(N0) > 0.0)
-
-
-def _pair_diag(kn, kt, m: int) -> np.ndarray:
-    return np.column_stack([np.broadcast_to(kn, m), np.broadcast_to(kt, m),
-                            np.broadcast_to(kt, m)]).ravel()
-
-
 def stuck_matrices(rh: ReducedHarmonic, B: np.ndarray, kn, kt) -> tuple[np.ndarray, np.ndarray]:
     """(K_h + B^T diag(kn, kt, kt) B, M_h): the reduced model with stuck contact springs."""
-    k = _pair_diag(kn, kt, B.shape[0] // 3)
+    k = spring_diagonal(kn, kt, B.shape[0] // 3).ravel()
     return rh.K + B.T @ (k[:, None] * B), rh.M
 
 
@@ -168,7 +157,7 @@ def modal_stuck_frequencies(omega2, contact, kn, kt, n_modes: int | None = None)
     """Stuck frequencies (Hz) from the modal data alone: diag(omega^2) + S^H k S, identity mass."""
     omega2 = np.asarray(omega2)
     S = np.asarray(contact).reshape(len(omega2), -1).T          # (3m, n)
-    k = _pair_diag(kn, kt, S.shape[0] // 3)
+    k = spring_diagonal(kn, kt, S.shape[0] // 3).ravel()
     K = np.diag(omega2).astype(S.dtype) + S.conj().T @ (k[:, None] * S)
     return eigenfrequencies(0.5 * (K + K.conj().T), np.eye(len(omega2)), n_modes)
 
@@ -177,7 +166,7 @@ def modal_stuck_frequencies(omega2, contact, kn, kt, n_modes: int | None = None)
 
 def reduced_dataset(rs: ReducedSector, kappa, bases: list[ModalBasis] | None = None,
                     attrs: dict | None = None) -> xr.Dataset:
-    """The reduced.nc contract (DESIGN §4): per harmonic, all omega^2 and the mass-normalised mode
+    """The reduced.nc contract (docs/design.md §4): per harmonic, all omega^2 and the mass-normalised mode
     shapes at the contact coordinates and the response DoF (complex split into real/imag)."""
     bases = bases or [modal_basis(rh, rs.B, rs.response_index) for rh in rs.harmonics]
     hs = rs.harmonics

@@ -1,6 +1,6 @@
-"""Reduced model against the full FE cyclic model (DESIGN §7 Craig–Bampton check).
+"""Reduced model against the full FE cyclic model (docs/design.md §7 Craig–Bampton check).
 
-At the default settings (N_FI, N_IF) the first 10 eigenfrequencies of ND 0, 3, 6, 9, contact free and
+At the campaign's settings (reduction section of config.yaml) the first 10 eigenfrequencies of ND 0, 3, 6, 9, contact free and
 stuck, match ``modal.cyclic_modes`` of the full sector to 0.1 %: on the coarse quadratic mesh for
 every ND, on the default campaign mesh for the target ND 3. Static condensation is exact (1e-8).
 """
@@ -13,11 +13,13 @@ from ringdamper.fem.cyclic import cyclic_transform, project
 from ringdamper.fem.linalg import solve
 from ringdamper.fem.model import build_model, contact_stiffness
 from ringdamper.geometry.sector import build_sector
-from ringdamper.modal import cyclic_modes
-from ringdamper.reduction import (eigenfrequencies, pair_stiffness, reduce_sector, stuck_frequencies,
+from ringdamper.modal.analysis import cyclic_modes
+from ringdamper.fem.contact_law import stuck_pair_stiffness
+from ringdamper.reduction import (eigenfrequencies, reduce_sector, stuck_frequencies,
                                   stuck_matrices)
 from ringdamper.reduction.craig_bampton import craig_bampton
 from ringdamper.reduction.partition import partition
+from ringdamper.reduction.stage import reduction_sizes
 
 EO = 27
 FREQ_TOL = 1e-3          # 0.1 %
@@ -33,14 +35,14 @@ def _compare(reduced, full):
 
 
 @pytest.fixture(scope="module")
-def small_quadratic(small_config):
+def small_quadratic(small_config, campaign_config):
     cfg = copy.deepcopy(small_config)
     cfg["mesh"]["element_order"] = 2
     model = build_model(build_sector(cfg, (0.3, -0.5, 0.7)), cfg)
     # some pairs open (N0 <= 0): per-pair stiffness arrays with zeros
     N0 = np.where(np.arange(len(model.pairs)) % 4 == 1, -1.0, 10.0)
-    kn, kt = pair_stiffness(model.pairs.area, N0, cfg["contact"])
-    return model, kn, kt, reduce_sector(model, EO, n_harmonics=3)
+    kn, kt = stuck_pair_stiffness(model.pairs.area, cfg["contact"], N0 > 0)
+    return model, kn, kt, reduce_sector(model, EO, n_harmonics=3, **reduction_sizes(campaign_config))
 
 
 @pytest.mark.parametrize("h, nd", [(0, 0), (1, 3), (2, 6), (3, 9)])
@@ -58,8 +60,8 @@ def test_frequencies_match_full_model_small_mesh(small_quadratic, h, nd):
 @pytest.mark.slow
 def test_target_nd_matches_full_model_default_mesh(config):
     model = build_model(build_sector(config, (1.0, -1.0, -1.0)), config)
-    kn, kt = pair_stiffness(model.pairs.area, np.ones(len(model.pairs)), config["contact"])
-    rs = reduce_sector(model, EO, harmonics=[1])
+    kn, kt = stuck_pair_stiffness(model.pairs.area, config["contact"])
+    rs = reduce_sector(model, EO, harmonics=[1], **reduction_sizes(config))
     rh = rs.harmonics[0]
     assert rh.nd == 3
     Kc = contact_stiffness(model, kn, kt)

@@ -7,19 +7,21 @@ import scipy.linalg as sla
 from ringdamper.fem.model import build_model
 from ringdamper.geometry.sector import BODY_RING, build_sector
 from ringdamper.io import check_contract, read_netcdf, write_netcdf
+from ringdamper.fem.contact_law import stuck_pair_stiffness
 from ringdamper.reduction import (eigenfrequencies, modal_basis, modal_stuck_frequencies,
-                                  pair_stiffness, reduce_sector, reduced_dataset, stuck_frequencies,
+                                  reduce_sector, reduced_dataset, stuck_frequencies,
                                   stuck_matrices)
 from ringdamper.reduction.partition import partition
+from ringdamper.reduction.stage import reduction_sizes
 
 EO = 27
 
 
 @pytest.fixture(scope="module")
-def small(small_config):
+def small(small_config, campaign_config):
     model = build_model(build_sector(small_config, (-0.4, 0.8, -0.2)), small_config)
-    kn, kt = pair_stiffness(model.pairs.area, np.ones(len(model.pairs)), small_config["contact"])
-    return model, kn, kt, reduce_sector(model, EO, n_harmonics=5)
+    kn, kt = stuck_pair_stiffness(model.pairs.area, small_config["contact"])
+    return model, kn, kt, reduce_sector(model, EO, n_harmonics=5, **reduction_sizes(campaign_config))
 
 
 def test_partition(small):
@@ -133,6 +135,6 @@ def test_netcdf_contract(small, tmp_path):
 def test_argument_errors(small):
     model, *_ = small
     with pytest.raises(ValueError, match="n_if"):
-        reduce_sector(model, EO, harmonics=[0], n_if=10_000)
+        reduce_sector(model, EO, harmonics=[0], n_fi=80, n_if=10_000)
     with pytest.raises(ValueError, match="n_fi"):
-        reduce_sector(model, EO, harmonics=[0], n_fi=10_000)
+        reduce_sector(model, EO, harmonics=[0], n_fi=10_000, n_if=40)

@@ -1,4 +1,4 @@
-"""Test 1: analytic 1-D oracles (spring chains against a rigid wall / a floating body), both laws.
+"""Analytic 1-D oracles (spring chains against a rigid wall / a floating body), both laws.
 
 Chain with springs k_j, node 0 clamped, loads f_i: the tip moves u_free = Σ_i f_i c_i freely
 (c_i = Σ_{j≤i} 1/k_j, tip flexibility c). Against a wall at gap g0 the tip force is
@@ -7,9 +7,9 @@ N = max(u_free − g0, 0) / (c + 1/kn) (penalty) or max(u_free − g0, 0) / c (e
 import numpy as np
 import pytest
 
-from static_systems import chain_flexibilities, floating_pair, wall_chain
+from ringdamper.static.synthetic import chain_flexibilities, floating_pair, wall_chain
 
-from ringdamper.contact.static import solve_static_contact
+from ringdamper.static.solver import solve_static_contact
 
 K_SPRINGS = np.array([3.0e6, 1.5e6, 4.0e6, 2.5e6])
 LOADS = np.array([10.0, -4.0, 25.0, 40.0])

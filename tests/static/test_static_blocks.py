@@ -1,4 +1,4 @@
-"""Tests 2, 4, 6: two elastic blocks (Q1 hexahedra) pressed together through matching node pairs.
+"""Two elastic blocks (Q1 hexahedra) pressed together through matching node pairs.
 
 Block A is clamped at its base; block B is held only by the contact (normal law + tangential
 sticking springs) unless stated. Tolerances: force resultants and balance 1e-8 relative.
@@ -8,9 +8,9 @@ import pytest
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from static_systems import assert_kkt, contact_forces, two_blocks
+from ringdamper.static.synthetic import assert_kkt, contact_forces, two_blocks
 
-from ringdamper.contact.static import solve_static_contact
+from ringdamper.static.solver import solve_static_contact
 
 KN, KT = 1.0e4, 1.0e3
 METHODS = ["penalty", "lagrange"]
@@ -28,7 +28,7 @@ def _solve(system, method, **kwargs):
 
 @pytest.mark.parametrize("method", METHODS)
 def test_pressed_blocks_carry_the_load(method):
-    """Test 2: ΣN equals the applied resultant; KKT and B's global force balance."""
+    """ΣN equals the applied resultant; KKT and B's global force balance."""
     system = two_blocks()
     r = _solve(system, method)
     assert_kkt(r, system, KT)
@@ -82,7 +82,7 @@ def test_pulling_apart_opens_every_pair(method):
 @pytest.mark.parametrize("method", METHODS)
 @pytest.mark.parametrize("case", ["tilted load", "curved gap"])
 def test_partial_contact(method, case):
-    """Test 6: some pairs separate; the active set is found and KKT holds."""
+    """Some pairs separate; the active set is found and KKT holds."""
     if case == "tilted load":
         system = two_blocks(load=_tilted)
     else:

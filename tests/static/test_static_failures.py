@@ -1,14 +1,14 @@
-"""Test 5: absurd physics ends with status ≠ 0 and a reason, never an exception; bad argument
+"""Absurd physics ends with status ≠ 0 and a reason, never an exception; bad argument
 shapes raise ValueError naming the argument. Also the Lagrange fallback path (augmented
 Lagrangian) and the round-off guard."""
 import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from static_systems import floating_pair, two_blocks
+from ringdamper.static.synthetic import floating_pair, two_blocks
 
-import ringdamper.contact.static as static
-from ringdamper.contact.static import solve_static_contact
+import ringdamper.static.solver as static
+from ringdamper.static.solver import solve_static_contact
 
 KN, KT = 1.0e4, 1.0e3
 METHODS = ["penalty", "lagrange"]

@@ -1,4 +1,4 @@
-"""Test 3: the penalty solution converges to the exact (Lagrange) one as kn → ∞, error ~ 1/kn.
+"""The penalty solution converges to the exact (Lagrange) one as kn → ∞, error ~ 1/kn.
 
 Two blocks with a curved initial gap (partial contact). Once kn is large enough for the active
 set to be the exact one, N_pen − N_exact is linear in the contact compliance 1/kn: the observed
@@ -6,9 +6,9 @@ order of the relative error between successive decades must be 1 (within 0.1).
 """
 import numpy as np
 
-from static_systems import two_blocks
+from ringdamper.static.synthetic import two_blocks
 
-from ringdamper.contact.static import solve_static_contact
+from ringdamper.static.solver import solve_static_contact
 
 KT = 1.0e3
 KNS = 10.0 ** np.arange(3, 8)  # the blocks' own contact stiffness is O(E·h) = O(100)

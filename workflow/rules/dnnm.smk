@@ -11,7 +11,7 @@ rule stuck_default:
     log:
         f"{RESULTS}/logs/stuck_default.log",
     conda:
-        "../../envs/dynamics.yaml"
+        "../../envs/ringdamper.yaml"
     script:
         "../../scripts/stuck_default.py"
 
@@ -30,7 +30,7 @@ rule dnnm:
     benchmark:
         f"{RESULTS}/benchmarks/dnnm/{{gid}}.tsv"
     conda:
-        "../../envs/dynamics.yaml"
+        "../../envs/ringdamper.yaml"
     script:
         "../../scripts/dnnm.py"
 
@@ -47,6 +47,6 @@ rule backbone_figures:
     log:
         f"{RESULTS}/logs/backbone_figures.log",
     conda:
-        "../../envs/campaign.yaml"
+        "../../envs/ringdamper.yaml"
     script:
         "../../scripts/backbone_figures.py"

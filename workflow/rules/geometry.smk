@@ -8,6 +8,6 @@ rule mesh:
     benchmark:
         f"{RESULTS}/benchmarks/mesh/{{gid}}.tsv"
     conda:
-        "../../envs/fem.yaml"
+        "../../envs/ringdamper.yaml"
     script:
         "../../scripts/mesh.py"

@@ -14,6 +14,6 @@ rule modal:
     benchmark:
         f"{RESULTS}/benchmarks/modal.tsv"
     conda:
-        "../../envs/fem.yaml"
+        "../../envs/ringdamper.yaml"
     script:
         "../../scripts/modal.py"

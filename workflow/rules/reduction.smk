@@ -1,7 +1,4 @@
 rule reduced:
-    input:
-        mesh=f"{RESULTS}/geometry/{{gid}}/mesh.vtu",
-        static=f"{RESULTS}/geometry/{{gid}}/static.nc",
     output:
         f"{RESULTS}/geometry/{{gid}}/reduced.nc",
     params:
@@ -11,6 +8,6 @@ rule reduced:
     benchmark:
         f"{RESULTS}/benchmarks/reduced/{{gid}}.tsv"
     conda:
-        "../../envs/fem.yaml"
+        "../../envs/ringdamper.yaml"
     script:
         "../../scripts/reduced.py"

@@ -6,6 +6,6 @@ rule samples:
     benchmark:
         f"{RESULTS}/benchmarks/samples.tsv"
     conda:
-        "../../envs/campaign.yaml"
+        "../../envs/ringdamper.yaml"
     script:
         "../../scripts/samples.py"

@@ -1,6 +1,4 @@
 rule static:
-    input:
-        mesh=f"{RESULTS}/geometry/{{gid}}/mesh.vtu",
     output:
         nc=f"{RESULTS}/geometry/{{gid}}/static.nc",
         vtu=f"{RESULTS}/geometry/{{gid}}/static.vtu",
@@ -11,7 +9,7 @@ rule static:
     benchmark:
         f"{RESULTS}/benchmarks/static/{{gid}}.tsv"
     conda:
-        "../../envs/fem.yaml"
+        "../../envs/ringdamper.yaml"
     script:
         "../../scripts/static.py"
 
@@ -26,6 +24,6 @@ rule static_maps:
     log:
         f"{RESULTS}/logs/static_maps.log",
     conda:
-        "../../envs/campaign.yaml"
+        "../../envs/ringdamper.yaml"
     script:
         "../../scripts/static_maps.py"

@@ -1,0 +1,194 @@
+"""Benchmarks (``make bench``): wall time, peak memory and sizes of each stage, written to files.
+
+Speed is measured here, never asserted in tests (docs/design.md §8). Each benchmark runs in its own process
+so that peak memory (ru_maxrss) belongs to it alone.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import multiprocessing as mp
+import platform
+import resource
+import time
+import traceback
+from pathlib import Path
+
+import numpy as np
+
+from ringdamper.config import load_config
+
+
+def _fe_chain(config: dict) -> dict:
+    """Mesh + assembly + ND diagram + Campbell of the default ring (the modal stage)."""
+    from ringdamper.fem.model import stuck_contact_stiffness
+    from ringdamper.fem.model import build_model
+    from ringdamper.geometry.sector import build_sector
+    from ringdamper.modal.stage import run_modal_stage
+
+    out = {}
+    t = time.perf_counter()
+    sector = build_sector(config, (0.0, 0.0, 0.0))
+    out["mesh_s"] = time.perf_counter() - t
+    t = time.perf_counter()
+    model = build_model(sector, config)
+    stuck_contact_stiffness(model, config["contact"])
+    out["assembly_s"] = time.perf_counter() - t
+    out.update(dofs=model.n_dofs, elements=int(sector.mesh.t.shape[1]), pairs=len(model.pairs),
+               element_order=model.element_order)
+    t = time.perf_counter()
+    res = run_modal_stage(config)
+    out["modal_stage_s"] = time.perf_counter() - t
+    out["crossing_speed_rpm"] = res.resonance["speed_rpm"]
+    out["crossing_frequency_hz"] = res.resonance["frequency_hz"]
+    return out
+
+
+def _static_chain(config: dict) -> dict:
+    """mesh -> model -> static contact for the reference rings (per-geometry times)."""
+    from ringdamper.campaign.sampling import REFERENCE_RINGS
+    from ringdamper.fem.model import build_model
+    from ringdamper.geometry.sector import build_sector
+    from ringdamper.static.stage import solve_static
+
+    rows = []
+    for label, kappa in REFERENCE_RINGS.items():
+        t = time.perf_counter()
+        model = build_model(build_sector(config, kappa), config)
+        t_model = time.perf_counter() - t
+        result, _ = solve_static(model, config)
+        rows.append({"ring": label, "kappa": list(kappa), "model_s": t_model,
+                     "static_s": time.perf_counter() - t - t_model, "status": result.status,
+                     "in_contact": int(result.in_contact.sum()), "pairs": len(model.pairs),
+                     "N0_sum_N": float(result.N0.sum()), "N0_max_N": float(result.N0.max()),
+                     "gap_max_m": float(result.gap.max()), "iterations": result.iterations})
+    return {"rings": rows}
+
+
+def _geometry_chain(config: dict) -> dict:
+    """The per-geometry chain on the default ring, one core: mesh -> static -> reduced -> dnnm
+    (H = 1, the campaign's H and 5), and one forced-response curve (H = 1) through the E-EBM
+    point of largest damping, with its peak against the E-EBM prediction."""
+    from ringdamper.nonlinear.stage import contacts_from_static, run_dnnm, structure_from_reduced, target_stuck_frequency
+    from ringdamper.fem.model import build_model
+    from ringdamper.geometry.sector import build_sector
+    from ringdamper.reduction import modal_basis, reduce_sector, reduced_dataset
+    from ringdamper.reduction.stage import reduction_sizes
+    from ringdamper.static.stage import solve_static, static_dataset
+    from ringdamper.studies.hub_calibration import crossing_speed
+
+    kappa = (0.0, 0.0, 0.0)
+    times = {}
+    t = time.perf_counter()
+    model = build_model(build_sector(config, kappa), config)
+    times["mesh_model_s"] = time.perf_counter() - t
+    t = time.perf_counter()
+    result, prob = solve_static(model, config)
+    static = static_dataset(model, result, prob, kappa, config["operation"]["speed_rpm"])
+    times["static_s"] = time.perf_counter() - t
+    t = time.perf_counter()
+    red = config["reduction"]
+    rs = reduce_sector(model, config["operation"]["engine_order"], n_harmonics=red["n_harmonics"],
+                       **reduction_sizes(config))
+    reduced = reduced_dataset(rs, kappa, [modal_basis(rh, rs.B, rs.response_index) for rh in rs.harmonics])
+    times["reduced_s"] = time.perf_counter() - t
+    # the target mode: nearest the EO x target-family crossing (the modal stage's resonance)
+    target_hz = crossing_speed(config)[1]
+    structure = structure_from_reduced(reduced, 1)
+    contacts = contacts_from_static(static, config["contact"], config["dnnm"]["friction_law"])
+    w_default = target_stuck_frequency(structure, contacts, target_hz)
+    out = {}
+    backbones = {}
+    for H in sorted({1, config["dnnm"]["n_harmonics"], 5}):
+        cfg = {**config, "dnnm": {**config["dnnm"], "n_harmonics": H,
+                                  "n_time_samples": max(config["dnnm"]["n_time_samples"], 4 * H + 4)}}
+        t = time.perf_counter()
+        ds = run_dnnm(reduced, static, cfg, target_hz, w_default)
+        out[f"dnnm_H{H}_s"] = time.perf_counter() - t
+        out[f"dnnm_H{H}_status_counts"] = np.bincount(ds.status.values.astype(int), minlength=5).tolist()
+        out[f"dnnm_H{H}_zeta_max"] = float(np.nanmax(ds.zeta.values))
+        backbones[H] = ds
+    out["frf_H1"] = _default_frf(reduced, contacts, backbones[1], config)
+    times.update(out)
+    times["chain_default_H_s"] = (times["mesh_model_s"] + times["static_s"] + times["reduced_s"]
+                                  + out[f"dnnm_H{config['dnnm']['n_harmonics']}_s"])
+    return times
+
+
+def _default_frf(reduced, contacts, backbone, config: dict) -> dict:
+    """Forced response (H = 1, EO forcing γ of the E-EBM at the damping peak, ζs of the config)
+    over ±1.5 % around that point's frequency; time and peak / E-EBM amplitude."""
+    from ringdamper.bench.dynamics import time_frf
+    from ringdamper.nonlinear.stage import structure_from_reduced
+
+    ok = np.isin(backbone.status.values, (0, 3))
+    mid = int(np.nanargmax(np.where(ok, backbone.zeta.values, np.nan)))
+    return time_frf(structure_from_reduced(reduced, 1), contacts, float(backbone.gamma.values[mid]),
+                    2 * np.pi * float(backbone.frequency.values[mid]),
+                    float(backbone.q_res_z.values[mid]), 1,
+                    config["dnnm"]["structural_damping_ratio"], (0.985, 1.015))
+
+
+def _dynamics_synthetic(config: dict) -> dict:
+    """The dynamics core on a synthetic system of the real size (ringdamper.bench.dynamics)."""
+    from ringdamper.bench.dynamics import run
+
+    return run()
+
+
+def _static_synthetic(config: dict) -> dict:
+    """The static contact solver on a synthetic two-block case (ringdamper.bench.static_synthetic)."""
+    from ringdamper.bench.static_synthetic import run
+
+    return {"Q2": run(linear=False), "Q1": run(linear=True)}
+
+
+def _mesh_convergence(config: dict) -> dict:
+    from ringdamper.studies.mesh_convergence import mesh_study
+
+    return {"levels": mesh_study(config, config["studies"]["mesh_convergence"]["levels"])}
+
+
+def _surrogate(config: dict) -> dict:
+    """Kriging (120 models) + 50³ grid + Sobol on synthetic data of the campaign's size."""
+    from ringdamper.bench.surrogate import run
+
+    return run(config.get("surrogate"))
+
+
+BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "geometry_chain": _geometry_chain,
+              "dynamics_synthetic": _dynamics_synthetic, "static_synthetic": _static_synthetic,
+              "mesh_convergence": _mesh_convergence, "surrogate": _surrogate}
+
+
+def _run_one(name, config, queue):
+    start = time.perf_counter()
+    try:
+        result = BENCHMARKS[name](config)
+    except Exception:  # report, don't hang the parent
+        result = {"error": traceback.format_exc()}
+    result["total_wall_s"] = time.perf_counter() - start
+    result["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    queue.put(result)
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--out", default="results/benchmarks")
+    parser.add_argument("--config", default=None)
+    parser.add_argument("--only", nargs="*", choices=sorted(BENCHMARKS))
+    args = parser.parse_args(argv)
+    config = load_config(args.config) if args.config else load_config()
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    ctx = mp.get_context("spawn")
+    for name in args.only or BENCHMARKS:
+        queue = ctx.Queue()
+        proc = ctx.Process(target=_run_one, args=(name, config, queue))
+        proc.start()
+        result = queue.get()
+        proc.join()
+        result["machine"] = {"cpus": mp.cpu_count(), "python": platform.python_version()}
+        (out / f"{name}.json").write_text(json.dumps(result, indent=2))
+        print(f"{name}: {json.dumps(result)}")

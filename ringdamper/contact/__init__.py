@@ -1,1 +1,0 @@
-"""Contact mechanics: static frictional contact solver and the 3-D friction element."""

@@ -1,0 +1,422 @@
+"""Harmonic balance residual condensed exactly onto the contact coordinates (docs/design.md §3.4).
+
+Per harmonic h the linear DoFs are eliminated by modal summation over *all* modes of
+``(K_h, M_h)`` (:mod:`ringdamper.nonlinear.structure`). With modal damping ``c_r`` and the EPMC term
+``−ξ M q̇`` (Krack 2015) the modal receptance is diagonal:
+
+    z_r = ω_r² − h²ω² + i h ω (c_r − ξ),       η_{h,r} = (f_{h,r} − ψ_rᴴ Λ_h) / z_r,
+
+with ``ψ_r = B_h φ_r`` and modal force ``f = γ Φᴴ F_h``. Most modes are condensed
+(``r ∈ C_h``); a few are kept as explicit unknowns (``r ∈ S_h``): the zero-frequency modes of
+harmonic 0 (rigid ring, see *gauge* below) and, optionally, modes whose ω_r lies near ``hω``, so the
+receptance never passes a pole. Unknowns ``y``: the real slots of the contact relative
+displacements ``d`` (slot-major, ``(C, p)``), then ``η_{h,S}`` (harmonic 0 real; ``h ≥ 1`` as
+``(a; b)`` with ``η = a − ib``). Residual, same layout:
+
+    r_{d,h} = D_h − Σ_{r∈C} ψ_r η_{h,r} − Σ_{r∈S} ψ_r η_{h,r},      r_{η,h} = z_S η_S − (f_S − Ψ_Sᴴ Λ_h),
+
+with ``Λ_h`` the contact forces from the AFT (:mod:`ringdamper.nonlinear.friction`) minus the static
+contact force ``(N0, 0, 0)``: displacements are measured from the static equilibrium, where
+that force is balanced by the static loads. The slider memory before the period is the static
+state (slider at zero) at every evaluation, so a solution depends on its own unknowns only, not on
+the continuation path: a pair that slips during the period has a unique periodic state anyway,
+and a pair that sticks throughout keeps the static slider position projected onto the band of
+positions that stick, ``[max_k(d_k − r_k), min_k(d_k + r_k)]``, i.e. it is pushed only as far as
+the motion forces it (:func:`ringdamper.nonlinear.friction.play_operator`), independently of where
+the period starts. (Carrying the previous point's slider state instead puts every pair that the
+growing amplitude pushes exactly on its stick/slip kink at every accepted point; Newton then
+cycles between the two sides.)
+
+Jacobian: ``∂r/∂y = I + A_h K_c`` with ``A_h = [Ψ_C diag(1/z_C) Ψ_Cᴴ ; Ψ_Sᴴ]`` per harmonic and
+``K_c`` the AFT Jacobian (block-diagonal over pairs), plus the explicit-mode blocks.
+
+Gauge (zero modes of harmonic 0, e.g. the ring's rotation and axial translation): their rows are
+the rigid-body equilibria ``Ψ_Zᴴ Λ_0 = f_Z``. The mean position ``η_Z`` is determined only while
+some contact holds it (stuck memory or a normal spring along the rigid motion). When the
+contact stiffness along a rigid motion vanishes (all pairs it moves have lost their memory), the
+system is singular: the equilibrium along that direction no longer involves ``η_Z`` and the
+position is arbitrary. Those directions (null space of ``K_c Ψ_Z`` on the DC slots, by SVD) get
+the explicit gauge ``η_Z = η_ref`` instead (``η_ref``: the last determined position, set by the
+caller), and the dropped equilibrium is returned as ``drift``: if non-zero at a solution, no
+periodic solution exists (the free body ratchets).
+
+Soft hold: "vanishes" means below ``gauge_tol`` (default 1 %) of one pair's stiffness times
+``‖Ψ_Z‖₂``. Once the whole interface slips, a ring whose contact normals are tilted (κ1) is still
+held along its rotation by the normal springs (the wedge effect), at ~2 % of its stuck hold. Its
+mean position is then set by a spring that soft: near the release of the last stuck pairs it
+slides by millimetres (far outside the small-displacement contact kinematics about the static
+state) and the branch meets a singular point (σ_min/σ_max ≈ 3e-11 of the augmented Jacobian)
+that no continuation passed on 6 of the first 40 campaign rings. Treating such a direction as
+free (gauged, then pinned) removes it.
+
+Pinning: a direction that lost its hold at an accepted point, or whose hold Newton found and
+lost again within a failed step (:meth:`CondensedHBM.pin_seen`), stays gauged for the rest of
+the branch (:meth:`CondensedHBM.pin`). Near the loss of hold the last holding pair cannot carry
+the imbalance and the gauge position keeps it stuck, so neither equation set alone has a
+solution and Newton cycles between them; the pinned direction behaves as a stop holding the
+body at its last equilibrium position, and the force the stop takes is the reported ``drift``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ringdamper.nonlinear.friction import ContactAFT, FrictionContacts, contact_aft
+from ringdamper.nonlinear.fourier import Fourier, real_block, real_vector, to_complex
+from ringdamper.nonlinear.structure import Structure
+
+
+@dataclass
+class CoreEval:
+    """One evaluation: residual ``r``, Jacobian ``J`` (core × core) and its columns for ω and ξ,
+    the trivial unknowns (d slots of pairs with zero contact Jacobian: their columns are unit
+    vectors), contact displacement/force slots ``d``, ``lam`` (C × p), modal coordinates ``eta[h]``
+    of every mode, the AFT result, the gauge drift (equilibria dropped for the gauge) and the
+    gauged directions ``gauge`` (orthonormal columns in the zero-mode space, one per drift)."""
+
+    r: np.ndarray
+    J: np.ndarray | None
+    dr_domega: np.ndarray | None
+    dr_dxi: np.ndarray | None
+    trivial: np.ndarray | None
+    d: np.ndarray
+    lam: np.ndarray
+    eta: list
+    aft: ContactAFT
+    drift: np.ndarray
+    gauge: np.ndarray
+
+    def take_jacobian(self) -> np.ndarray | None:
+        """The Jacobian, released from this evaluation: evaluations are kept as the payload of
+        every accepted continuation point, and a dense n_core² Jacobian each (18 MB on a real
+        ring at H = 3) added up to gigabytes."""
+        J, self.J = self.J, None
+        return J
+
+
+class CondensedHBM:
+    """Condensed HBM of one structure, contact set and harmonic truncation.
+
+    ``explicit[h]``: indices of the modes of harmonic h kept as unknowns (the zero modes of
+    harmonic 0 are always added). ``damping[h]``: modal damping coefficients ``c_r`` (None: no
+    structural damping, as in the dNNM). ``forced``: include the forcing vectors scaled by
+    ``gamma``. ``gauge_tol``: a rigid-body direction whose DC contact stiffness (singular value
+    of ``K_c Ψ_Z``) is below ``gauge_tol × max(kn, kt) × ‖Ψ_Z‖₂`` counts as not held (module
+    docstring, *soft hold*).
+    """
+
+    def __init__(self, structure: Structure, contacts: FrictionContacts, H: int, nt: int,
+                 explicit=None, damping=None, forced: bool = False, gamma: float = 0.0,
+                 gauge_tol: float = 1e-2):
+        if H > structure.H_max:
+            raise ValueError(f"structure has harmonics up to {structure.H_max}, H={H} requested")
+        if contacts.npairs != structure.npairs:
+            raise ValueError("contact parameters and structure disagree on the number of pairs")
+        self.structure, self.contacts = structure, contacts
+        self.H, self.fourier = H, Fourier(H, nt)
+        self.C, self.p, self.npairs = 2 * H + 1, structure.p, structure.npairs
+        self.n_d = self.C * self.p
+        self.modal = [structure.modal(h) for h in range(H + 1)]
+        self.damping = [np.zeros(m.w2.size) if damping is None else np.asarray(damping[h], float)
+                        for h, m in enumerate(self.modal)]
+        self.forced, self.gamma = forced, gamma
+        self.static = contacts.static_force().ravel()
+        self.S, self.Cset, self.eta_slices = [], [], []
+        off = self.n_d
+        for h, m in enumerate(self.modal):
+            S = np.asarray([] if explicit is None else explicit[h], int)
+            if h == 0:
+                S = np.union1d(S, np.flatnonzero(m.zero))
+            mask = np.ones(m.w2.size, bool)
+            mask[S] = False
+            self.S.append(S)
+            self.Cset.append(np.flatnonzero(mask))
+            size = S.size * (1 if h == 0 else 2)
+            self.eta_slices.append(slice(off, off + size))
+            off += size
+        self.n_core = off
+        self.PsiH = [m.Psi.conj().T.copy() for m in self.modal]                 # Ψ_hᴴ
+        self.PsiC = [m.Psi[:, Cs] for m, Cs in zip(self.modal, self.Cset)]     # condensed
+        self.PsiS = [m.Psi[:, S] for m, S in zip(self.modal, self.S)]          # explicit
+        self.zero_modes = np.flatnonzero(self.modal[0].zero[self.S[0]])    # positions within S_0
+        if self.zero_modes.size:
+            PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]
+            if np.any(np.linalg.norm(PsiZ, axis=0) == 0):
+                raise ValueError("a zero-frequency mode of harmonic 0 moves no contact: mechanism")
+        self.eta_ref = np.zeros(self.zero_modes.size)
+        self.pinned = np.zeros((self.zero_modes.size, 0))   # directions gauged for good
+        self.seen = np.zeros((self.zero_modes.size, 0))     # lost holds seen since the last accept
+        kscale = max(np.max(contacts.kn), np.max(contacts.kt))
+        self._null_tol = gauge_tol * kscale * (np.linalg.norm(PsiZ, 2) if self.zero_modes.size
+                                               else 0.0)
+
+    # ---- layout helpers -------------------------------------------------------------------
+    def eta_explicit(self, y: np.ndarray, h: int) -> np.ndarray:
+        v = y[self.eta_slices[h]]
+        if h == 0:
+            return v.astype(complex)
+        s = v.size // 2
+        return v[:s] - 1j * v[s:]
+
+    def pack(self, d: np.ndarray, eta: list) -> np.ndarray:
+        """Unknown vector from contact slots ``d`` (C × p) and the modal coordinates ``eta[h]``
+        of all modes (only the explicit ones are stored)."""
+        parts = [d.ravel()]
+        for h in range(self.H + 1):
+            e = eta[h][self.S[h]]
+            parts.append(e.real if h == 0 else real_vector(e))
+        return np.concatenate(parts)
+
+    def slot_index(self, h: int, imag: bool, i: int) -> int:
+        """Index in ``y`` of the cosine (``imag=False``) or sine slot of harmonic ``h ≥ 1`` of
+        contact coordinate ``i``."""
+        return (2 * h - 1 + int(imag)) * self.p + i
+
+    def eta_index(self, h: int, k: int, imag: bool) -> int:
+        """Index in ``y`` of the real (``a``) or sine (``b``) part of explicit mode ``k`` (position
+        in ``S[h]``) of harmonic ``h``."""
+        s = self.S[h].size
+        return self.eta_slices[h].start + k + (s if imag else 0)
+
+    def accept(self, y: np.ndarray, ev: "CoreEval") -> None:
+        """History update on every accepted continuation point: the gauge reference takes the
+        zero-mode positions of ``y`` (an undetermined rigid-body position keeps its last value)
+        and the directions gauged at ``ev`` are pinned (module docstring)."""
+        if self.zero_modes.size:
+            self.eta_ref = y[self.eta_slices[0].start + self.zero_modes].copy()
+            self.pin(ev.gauge)
+            self.seen = np.zeros_like(self.pinned[:, :0])
+
+    def pin(self, basis: np.ndarray) -> bool:
+        """Gauge the directions ``basis`` (columns in the zero-mode space) for good; True if that
+        added a direction."""
+        merged = _span(self.pinned, basis)
+        if merged.shape[1] == self.pinned.shape[1]:
+            return False
+        self.pinned = merged
+        return True
+
+    def pin_seen(self) -> bool:
+        """Pin the directions whose hold was lost in some evaluation since the last accepted
+        point (after a failed step: Newton cycled between holding and not holding)."""
+        added = self.pin(self.seen)
+        self.seen = np.zeros_like(self.pinned[:, :0])
+        return added
+
+    def relative_drift(self, ev: "CoreEval") -> float:
+        """Largest dropped rigid-body equilibrium of ``ev`` relative to ``max|Ψ_0|·max|λ|``
+        (0 when no rigid-body direction is gauged)."""
+        if not ev.drift.size:
+            return 0.0
+        scale = np.max(np.abs(self.modal[0].Psi)) * max(np.max(np.abs(ev.lam)), 1e-300)
+        return float(np.max(np.abs(ev.drift)) / scale)
+
+    def core_scale(self, y: np.ndarray) -> np.ndarray:
+        """Scale of every core unknown for convergence tests: contact slots by the largest of
+        them, explicit modal coordinates by the largest of them or the modal equivalent of the
+        contact scale, whichever is larger."""
+        sc = np.empty(self.n_core)
+        ds = max(np.max(np.abs(y[:self.n_d])), 1e-300)
+        sc[:self.n_d] = ds
+        if self.n_core > self.n_d:
+            psi = max(np.max(np.abs(self.modal[h].Psi[:, self.S[h]]), initial=0.0)
+                      for h in range(self.H + 1))
+            sc[self.n_d:] = max(np.max(np.abs(y[self.n_d:])), ds / max(psi, 1e-300))
+        return sc
+
+    # ---- evaluation -----------------------------------------------------------------------
+    def evaluate(self, y: np.ndarray, omega: float, xi: float, jacobian: bool = True) -> CoreEval:
+        H, C, p, npairs = self.H, self.C, self.p, self.npairs
+        d = y[:self.n_d].reshape(C, p)
+        aft = contact_aft(self.contacts, self.fourier, d.reshape(C, npairs, 3).transpose(1, 2, 0),
+                          jacobian=True if jacobian else ("dc" if self.zero_modes.size else False))
+        lam = aft.lam.transpose(2, 0, 1).reshape(C, p).copy()
+        lam[0] -= self.static
+        D, Lam = to_complex(d, H), to_complex(lam, H)
+        r = np.empty(self.n_core)
+        J = np.zeros((self.n_core, self.n_core)) if jacobian else None
+        dr_dw = np.zeros(self.n_core) if jacobian else None
+        dr_dx = np.zeros(self.n_core) if jacobian else None
+        if jacobian:
+            kc = aft.jac
+            active = np.any(kc.reshape(npairs, -1) != 0, axis=1)
+            J[np.arange(self.n_d), np.arange(self.n_d)] = 1.0
+        etas = []
+        for h in range(H + 1):
+            m, S, Cs, sl = self.modal[h], self.S[h], self.Cset[h], self.eta_slices[h]
+            z, dz_dw, dz_dx = self._modal_impedance(h, omega, xi)
+            load = (self.gamma * m.f if self.forced else 0.0) - self.PsiH[h] @ Lam[h]
+            eta_S = self.eta_explicit(y, h)
+            eta = np.empty(m.w2.size, complex)
+            eta[Cs] = load[Cs] / z[Cs]
+            eta[S] = eta_S
+            etas.append(eta)
+            rd = D[h] - m.Psi @ eta
+            re = z[S] * eta_S - load[S]
+            rows = self._rows(h)
+            if h == 0:
+                r[rows], r[sl] = rd.real, re.real
+            else:
+                r[rows], r[sl] = real_vector(rd), real_vector(re)
+            if not jacobian:
+                continue
+            PsiC, PsiS = self.PsiC[h], self.PsiS[h]
+            rhoC = 1.0 / z[Cs]
+            G = (PsiC * rhoC) @ PsiC.conj().T
+            A = np.vstack([G, PsiS.conj().T])                      # response to δΛ_h
+            Areal = A.real if h == 0 else _real_rows(A, p)
+            KA = _apply_contact_jacobian(Areal, kc, self.fourier.slots(h), active, p)
+            nr = rows.stop - rows.start
+            J[rows, :self.n_d] += KA[:nr]
+            J[sl, :self.n_d] += KA[nr:]
+            if h == 0:
+                J[rows, sl] = -PsiS.real
+                J[sl, sl] = np.diag(z[S].real)
+            else:
+                J[rows, sl] = -real_block(PsiS)
+                J[sl, sl] = real_block(np.diag(z[S]))
+            # ω and ξ derivatives: only z depends on them
+            de_w = -(eta[Cs] / z[Cs]) * dz_dw[Cs]
+            de_x = -(eta[Cs] / z[Cs]) * dz_dx[Cs]
+            gw, gx = -PsiC @ de_w, -PsiC @ de_x
+            ew, ex = dz_dw[S] * eta_S, dz_dx[S] * eta_S
+            if h == 0:
+                dr_dw[rows], dr_dw[sl] = gw.real, ew.real
+                dr_dx[rows], dr_dx[sl] = gx.real, ex.real
+            else:
+                dr_dw[rows], dr_dw[sl] = real_vector(gw), real_vector(ew)
+                dr_dx[rows], dr_dx[sl] = real_vector(gx), real_vector(ex)
+        trivial = None
+        if jacobian:
+            trivial = np.zeros(self.n_core, bool)
+            trivial[:self.n_d] = np.tile(np.repeat(~active, 3), C)
+        drift, gauge = self._gauge(r, J, dr_dw, dr_dx, y, aft.jac)
+        return CoreEval(r=r, J=J, dr_domega=dr_dw, dr_dxi=dr_dx, trivial=trivial, d=d, lam=lam,
+                        eta=etas, aft=aft, drift=drift, gauge=gauge)
+
+    def modal_norm2(self, ev: CoreEval, omega: float, xi: float, h: int = 1):
+        """``Σ_r |η_{h,r}|² = Q_hᴴ M_h Q_h`` and its gradient w.r.t. ``y``, ω and ξ."""
+        S, Cs = self.S[h], self.Cset[h]
+        eta = ev.eta[h]
+        z, dz_dw, dz_dx = self._modal_impedance(h, omega, xi)
+        etaC = eta[Cs]
+        grad = np.zeros(self.n_core)
+        u = self.PsiC[h] @ (etaC * np.conj(1.0 / z[Cs]))
+        row = -2.0 * (u.real[None] if h == 0 else real_vector(u)[None])
+        kc = ev.aft.jac
+        active = np.any(kc.reshape(self.npairs, -1) != 0, axis=1)
+        grad[:self.n_d] = _apply_contact_jacobian(row, kc, self.fourier.slots(h), active, self.p)[0]
+        eS = eta[S]
+        grad[self.eta_slices[h]] = 2.0 * (eS.real if h == 0 else real_vector(eS))
+        a2 = np.abs(etaC) ** 2
+        d_w = -2.0 * np.sum(a2 * np.real(dz_dw[Cs] / z[Cs]))
+        d_x = -2.0 * np.sum(a2 * np.real(dz_dx[Cs] / z[Cs]))
+        return float(np.sum(np.abs(eta) ** 2)), grad, d_w, d_x
+
+    def _modal_impedance(self, h, omega, xi):
+        m = self.modal[h]
+        c = self.damping[h]
+        z = m.w2 - (h * omega) ** 2 + 1j * h * omega * (c - xi)
+        dz_dw = -2.0 * h * h * omega + 1j * h * (c - xi)
+        dz_dx = np.full(m.w2.size, -1j * h * omega)
+        return z, np.broadcast_to(dz_dw, z.shape), dz_dx
+
+    def _rows(self, h: int) -> slice:
+        sl = self.fourier.slots(h)
+        return slice(sl.start * self.p, sl.stop * self.p)
+
+    def _gauge(self, r, J, dr_dw, dr_dx, y, kc):
+        """Replace the rigid-body equilibria along the pinned directions and along directions not
+        held by any contact by the gauge ``η_Z = η_ref`` (module docstring); return the dropped
+        equilibria (drift) and the gauged directions."""
+        nz = self.zero_modes.size
+        pinned = self.pinned
+        if nz == 0:
+            return np.zeros(0), pinned
+        rows = self.eta_slices[0].start + self.zero_modes     # η_Z unknowns and their equilibria
+        free = _complement(pinned)
+        new = np.zeros((nz, 0))
+        if free.shape[1]:
+            PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]       # (p, nz)
+            S = np.matmul(kc[..., 0].reshape(self.npairs, -1, 3),
+                          PsiZ.reshape(self.npairs, 3, nz)).reshape(-1, nz) @ free
+            _, sv, Vt = np.linalg.svd(S, full_matrices=False)
+            null = np.r_[sv, np.zeros(free.shape[1] - sv.size)] <= self._null_tol
+            if np.any(null) and not np.all(null):
+                sign = np.sign(Vt[np.arange(Vt.shape[0]), np.argmax(np.abs(Vt), 1)])
+                free = free @ (Vt.T * sign)                            # deterministic basis
+            new, free = free[:, null], free[:, ~null]
+            self.seen = _span(self.seen, new)
+        gauge = np.hstack([pinned, new])
+        if not gauge.shape[1]:
+            return np.zeros(0), gauge
+        V = np.hstack([free, gauge])                                    # held | gauged
+        g = slice(free.shape[1], nz)
+        rot = V.T @ r[rows]
+        drift = rot[g].copy()
+        rot[g] = gauge.T @ (y[rows] - self.eta_ref)
+        r[rows] = rot
+        if J is not None:
+            Jr = V.T @ J[rows]
+            Jr[g] = 0.0
+            Jr[g, rows] = gauge.T
+            J[rows] = Jr
+            for vec in (dr_dw, dr_dx):
+                v = V.T @ vec[rows]
+                v[g] = 0.0
+                vec[rows] = v
+        return drift, gauge
+
+
+def _span(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Orthonormal basis of the span of the columns of ``a`` and ``b`` (at most their row count,
+    so lost holds seen at every Newton iterate do not pile up)."""
+    merged = np.hstack([a, b])
+    if not merged.shape[1]:
+        return merged
+    u, sv, _ = np.linalg.svd(merged, full_matrices=False)
+    return u[:, :int(np.sum(sv > 1e-8 * sv[0]))]
+
+
+def _complement(basis: np.ndarray) -> np.ndarray:
+    """Orthonormal basis of the orthogonal complement of the orthonormal columns ``basis``
+    (the identity when there are none)."""
+    n, k = basis.shape
+    if k == 0:
+        return np.eye(n)
+    u, _, _ = np.linalg.svd(basis, full_matrices=True)
+    return u[:, k:]
+
+
+def pole_modes(structure: Structure, H: int, lo: float, hi: float) -> list:
+    """Explicit-mode sets: for ``h ≥ 1`` the modes with ``ω_r ∈ [h·lo, h·hi]`` (none if
+    ``hi ≤ lo``); harmonic 0 gets its zero modes automatically in :class:`CondensedHBM`."""
+    out = [np.zeros(0, int)]
+    for h in range(1, H + 1):
+        w = np.sqrt(structure.modal(h).w2)
+        out.append(np.flatnonzero((w >= h * lo) & (w <= h * hi)) if hi > lo else np.zeros(0, int))
+    return out
+
+
+def _real_rows(A: np.ndarray, p: int) -> np.ndarray:
+    """Real form of the stacked complex operator ``[G (p×p); Ψ_Sᴴ (s×p)]`` acting on ``(a; b)``
+    slots, with rows ordered ``[G_a; G_b; S_a; S_b]`` to match the unknown layout."""
+    G, P = A[:p], A[p:]
+    return np.vstack([real_block(G), real_block(P)])
+
+
+def _apply_contact_jacobian(A: np.ndarray, kc: np.ndarray, slots: slice, active: np.ndarray,
+                            p: int) -> np.ndarray:
+    """``A @ K_c[slots rows, :]`` with ``A`` (R, L·p) over ``(slot in slots, coordinate)`` columns
+    and ``K_c`` the block-diagonal AFT Jacobian ``kc`` (np, 3, C, 3, C); inactive pairs skipped."""
+    npairs, C = kc.shape[0], kc.shape[2]
+    L = slots.stop - slots.start
+    R = A.shape[0]
+    out = np.zeros((R, C, npairs, 3))
+    if np.any(active):
+        na = int(active.sum())
+        Aq = A.reshape(R, L, npairs, 3)[:, :, active].transpose(2, 0, 1, 3).reshape(na, R, 3 * L)
+        Kq = kc[active][:, :, slots].transpose(0, 2, 1, 3, 4).reshape(na, 3 * L, 3 * C)
+        out[:, :, active] = np.matmul(Aq, Kq).reshape(na, R, 3, C).transpose(1, 3, 0, 2)
+    return out.reshape(R, C * p)

@@ -1,0 +1,236 @@
+"""Damped nonlinear normal modes by the extended periodic motion concept (Krack 2015; paper §2.5.3;
+docs/design.md §3.4).
+
+    M q̈ + K q + Bᵀ λ(Bq) − ξ M q̇ = 0,       ξ = 2 ζ ω      (structural damping *not* included),
+
+solved by harmonic balance (condensed, :mod:`ringdamper.nonlinear.condensed`) with unknowns
+``z = [y, ω, ξ]`` and two extra equations:
+
+* amplitude: ``½ log(Q_1ᴴ M_1 Q_1) − log α = 0`` (fundamental harmonic mass-normalised,
+  ``Q_h = α ψ_h`` with ``ψ_1ᴴ M_1 ψ_1 = 1``; ``Q_1ᴴ M_1 Q_1 = Σ_r |η_{1,r}|²``);
+* phase: the sine slot of harmonic 1 of one unknown (the largest of the linear mode's contact
+  coordinates, or explicit modal coordinates) is zero.
+
+Continuation in ``s = log α`` lands on every value of the requested α grid (so outputs on the
+common grid are converged solutions, not interpolants). The start is the linearised stuck mode
+(contact springs ``(kn, kt, kt)`` on preloaded pairs, :meth:`Structure.stuck_modes`).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ringdamper.nonlinear.friction import FrictionContacts
+from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
+from ringdamper.nonlinear.continuation import Status, StepControl, natural_then_arclength
+from ringdamper.nonlinear.fourier import default_nt
+from ringdamper.nonlinear.structure import Structure
+
+
+@dataclass
+class Backbone:
+    """dNNM on the α grid. Per α: ``omega`` [rad/s], ``xi`` [1/s], ``zeta``, ``status`` (0 =
+    converged, see :class:`Status`), ``reason``, Newton ``iterations``, contact displacement and
+    force slots ``d``, ``lam`` ``(nα, C, p)``, modal coordinates ``eta[h]`` ``(nα, m_h)`` of all
+    modes, ``pinned`` the rigid-body directions gauged at each point and
+    ``drift`` (largest dropped rigid-body equilibrium, see the gauge). ``branch``
+    holds every accepted continuation point ``(α, ω, ξ)``; ``model`` the condensed HBM and
+    ``phase_index`` the unknown fixed by the phase condition (what :meth:`state` and
+    :class:`EPMCProblem` need to restart from a point)."""
+
+    alpha: np.ndarray
+    omega: np.ndarray
+    xi: np.ndarray
+    zeta: np.ndarray
+    status: np.ndarray
+    reason: list
+    iterations: np.ndarray
+    d: np.ndarray
+    lam: np.ndarray
+    eta: list
+    pinned: list
+    drift: np.ndarray
+    branch: np.ndarray
+    model: CondensedHBM = field(repr=False)
+    phase_index: int = -1
+    wall_time: float = 0.0
+
+    def state(self, i: int) -> np.ndarray:
+        """Unknown vector ``z = [y, ω, ξ]`` of grid point ``i``; sets the model's pinned
+        rigid-body directions to those that point was solved with (so a restart reproduces it)."""
+        self.model.pinned = self.pinned[i].copy()
+        y = self.model.pack(self.d[i], [e[i] for e in self.eta])
+        return np.r_[y, self.omega[i], self.xi[i]]
+
+    @property
+    def H(self) -> int:
+        return self.model.H
+
+    @property
+    def nt(self) -> int:
+        return self.model.fourier.nt
+
+
+class EPMCProblem:
+    """Residual ``[r_core; amplitude; phase]`` of ``z = [y, ω, ξ]`` at ``s = log α``."""
+
+    def __init__(self, model: CondensedHBM, phase_index: int, drift_tol: float = 1e-8):
+        self.model, self.phase_index, self.drift_tol = model, phase_index, drift_tol
+        self.n = model.n_core + 2
+
+    def fun(self, z: np.ndarray, s: float, jacobian: bool = True):
+        m = self.model
+        y, omega, xi = z[:-2], z[-2], z[-1]
+        ev = m.evaluate(y, omega, xi, jacobian)
+        n2 = float(np.sum(np.abs(ev.eta[1]) ** 2))
+        r = np.r_[ev.r, 0.5 * np.log(n2) - s, y[self.phase_index]]
+        if not jacobian:
+            return r, None, None, m.n_core, ev
+        n2, g, d_w, d_x = m.modal_norm2(ev, omega, xi)
+        J = np.zeros((self.n, self.n))
+        J[:m.n_core, :m.n_core] = ev.take_jacobian()
+        J[:m.n_core, -2], J[:m.n_core, -1] = ev.dr_domega, ev.dr_dxi
+        J[-2, :m.n_core], J[-2, -2], J[-2, -1] = g / (2 * n2), d_w / (2 * n2), d_x / (2 * n2)
+        J[-1, self.phase_index] = 1.0
+        return r, J, ev.trivial, m.n_core, ev
+
+    def dfun_ds(self, z, s):
+        e = np.zeros(self.n)
+        e[-2] = -1.0
+        return e
+
+    def scale(self, z: np.ndarray) -> np.ndarray:
+        """Convergence scales: :meth:`CondensedHBM.core_scale` for ``y``, ω for ω and ξ."""
+        return np.r_[self.model.core_scale(z[:-2]), abs(z[-2]), abs(z[-2])]
+
+    def accept(self, z, ev):
+        self.model.accept(z[:-2], ev)
+
+    def jump_mask(self) -> np.ndarray:
+        """Unknowns of the branch-jump test: all but the mean (harmonic-0) contact slots and
+        rigid-body/explicit modal coordinates. Where the last pairs holding the ring's rigid
+        motion let go, its mean position (and with it every DC slot) moves by much more than the
+        predictor for a tiny change of α while ω, ξ and the harmonics change smoothly; a switch
+        to another branch shows in those."""
+        m = self.model
+        mask = np.ones(self.n, bool)
+        mask[:m.p] = False                                  # slot 0 (mean) of every coordinate
+        mask[m.eta_slices[0]] = False
+        return mask
+
+    def on_failure(self) -> bool:
+        """After a failed step: pin the rigid-body directions whose hold was lost on the way
+        (:meth:`CondensedHBM.pin_seen`); True if that changed the problem (retry the step)."""
+        return self.model.pin_seen()
+
+
+def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
+         nt: int | None = None, mode: int = 0, omega_target: float | None = None,
+         pole_band: float = 0.1, tol: float = 1e-8, max_iter: int = 20,
+         steps: StepControl | None = None, gauge_reference: np.ndarray | None = None,
+         alpha_start: float | None = None, drift_tol: float = 1e-8) -> Backbone:
+    """dNNM backbone of one mode over the increasing modal-amplitude grid ``alpha``.
+
+    ``mode``/``omega_target``: which linearised stuck mode of harmonic 1 to follow (index in
+    ascending frequency, or the one closest to ``omega_target`` [rad/s]). ``pole_band``: modes of
+    harmonic ``h`` whose ω_r lies within ``±pole_band·hω₀`` of ``hω₀`` (ω₀ the stuck frequency;
+    low side widened to ``(1 − 2·pole_band)``) are kept explicit. ``steps``: control in ``log α``
+    (default initial 0.2, min 1e-4, max 0.5). ``gauge_reference``: position of zero modes while
+    they are undetermined at the first point (default 0). ``alpha_start``: where the continuation
+    starts from the linear stuck mode (default: half the smallest amplitude at which, in the
+    linear stuck mode, a pair would slip or open, if below ``alpha[0]``). ``drift_tol``: relative
+    size of the dropped rigid-body equilibrium above which a converged point gets status DRIFT.
+    """
+    t0 = time.perf_counter()
+    alpha = np.asarray(alpha, float)
+    if alpha.ndim != 1 or np.any(np.diff(alpha) <= 0) or alpha[0] <= 0:
+        raise ValueError("alpha must be a positive, strictly increasing 1-D grid")
+    if H < 1:
+        raise ValueError("the EPMC needs H >= 1")
+    nt = default_nt(H) if nt is None else nt
+    steps = steps or StepControl(initial=0.2, minimum=1e-4, maximum=0.5)
+    omega0, phi = _stuck_mode(structure, contacts, mode, omega_target)
+    explicit = pole_modes(structure, H, omega0 * (1 - 2 * pole_band), omega0 * (1 + pole_band))
+    model = CondensedHBM(structure, contacts, H, nt, explicit=explicit)
+    if gauge_reference is not None:
+        model.eta_ref = np.asarray(gauge_reference, float).copy()
+    if alpha_start is None:
+        alpha_start = min(alpha[0], 0.5 * linear_limit(structure, contacts, phi))
+    z0, phase_index = _initial_guess(model, phi, omega0, alpha_start)
+    problem = EPMCProblem(model, phase_index, drift_tol)
+    run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log(alpha), problem.scale,
+                                 steps, tol, max_iter, accept=problem.accept,
+                                 s_start=np.log(alpha_start), on_failure=problem.on_failure,
+                                 jump_mask=problem.jump_mask())
+    return _collect(run, model, alpha, problem, time.perf_counter() - t0)
+
+
+def _stuck_mode(structure, contacts, mode, omega_target):
+    omegas, Phi = structure.stuck_modes(contacts.stuck_stiffness().ravel(), h=1)
+    k = mode if omega_target is None else int(np.argmin(np.abs(omegas - omega_target)))
+    return omegas[k], Phi[:, k]
+
+
+def linear_limit(structure, contacts, phi):
+    """Smallest modal amplitude at which the linear stuck mode ``phi`` would make a preloaded
+    pair slip (``kt |d_t| = μ N0``) or open (``kn |d_n| = N0``), or a gapped pair close."""
+    d = np.abs(structure.harmonics[1].B @ phi).reshape(-1, 3)
+    with np.errstate(divide="ignore"):
+        slip = contacts.mu * contacts.N0 / (contacts.kt * np.max(d[:, 1:], axis=1))
+        open_ = np.where(contacts.N0 > 0, contacts.N0 / contacts.kn, contacts.gap) / d[:, 0]
+    lim = np.min(np.r_[slip[contacts.N0 > 0], open_, np.inf])
+    return lim if np.isfinite(lim) and lim > 0 else np.inf
+
+
+def _initial_guess(model: CondensedHBM, phi: np.ndarray, omega0: float, alpha0: float):
+    """Linear stuck mode at amplitude ``α₀``, phase rotated so the phase unknown is real."""
+    m1 = model.modal[1]
+    hd = model.structure.harmonics[1]
+    d1 = hd.B @ phi
+    eta1 = m1.Phi.conj().T @ (hd.M @ phi)
+    cand = np.r_[np.abs(d1), np.abs(eta1[model.S[1]])]
+    k = int(np.argmax(cand))
+    ref = d1[k] if k < model.p else eta1[model.S[1][k - model.p]]
+    rot = alpha0 * np.exp(-1j * np.angle(ref))
+    d = np.zeros((model.C, model.p))
+    d[1], d[2] = (rot * d1).real, -(rot * d1).imag
+    eta = [np.zeros(mh.w2.size, complex) for mh in model.modal]
+    eta[1] = rot * eta1
+    y = model.pack(d, eta)
+    if model.zero_modes.size:
+        y[model.eta_slices[0].start + model.zero_modes] = model.eta_ref
+    phase = (model.slot_index(1, True, k) if k < model.p
+             else model.eta_index(1, k - model.p, True))
+    return np.r_[y, omega0, 0.0], phase
+
+
+def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall) -> Backbone:
+    n = alpha.size
+    nan = np.full(n, np.nan)
+    omega, xi, drift = nan.copy(), nan.copy(), nan.copy()
+    d = np.full((n, model.C, model.p), np.nan)
+    lam = np.full_like(d, np.nan)
+    eta = [np.full((n, mh.w2.size), np.nan, complex) for mh in model.modal]
+    pinned = [np.zeros((model.zero_modes.size, 0))] * n
+    iters = np.zeros(n, int)
+    status, reason = run.status.copy(), list(run.reason)
+    for i, pt in enumerate(run.points):
+        if pt is None:
+            continue
+        ev = pt.payload
+        omega[i], xi[i], iters[i] = pt.z[-2], pt.z[-1], pt.iterations
+        d[i], lam[i], pinned[i] = ev.d, ev.lam, ev.gauge
+        for h in range(model.H + 1):
+            eta[h][i] = ev.eta[h]
+        drift[i] = model.relative_drift(ev)
+        if drift[i] > problem.drift_tol:
+            status[i] = Status.DRIFT
+            reason[i] = (f"mean force on a free body {drift[i]:.2e} (relative): no periodic "
+                         "solution, the body ratchets")
+    branch = np.array([(np.exp(p.s), p.z[-2], p.z[-1]) for p in run.branch]).reshape(-1, 3)
+    return Backbone(alpha=alpha, omega=omega, xi=xi, zeta=xi / (2 * omega), status=status,
+                    reason=reason, iterations=iters, d=d, lam=lam, eta=eta, pinned=pinned,
+                    drift=drift, branch=branch, model=model, phase_index=problem.phase_index,
+                    wall_time=wall)

@@ -1,0 +1,187 @@
+"""Nonlinear forced response: arc-length continuation in excitation frequency and resonance-peak
+extraction (paper §2.6 Fig. 9, §3.4 Fig. 19g; docs/design.md §3.5).
+
+The forcing is ``Re(γ F̂ e^{iωt})`` with ``F̂`` the structure's harmonic-1 forcing vector (phase 0),
+structural damping the modal ratio ``zeta_s``. The curve starts from a converged fixed-frequency
+solve at ``omega_start`` (seeded with the linearised stuck response) and follows the branch with
+pseudo-arc-length steps until ω passes ``omega_end``. The resonance peak is the maximum of the
+response measure along the branch, refined between the neighbouring points by a bounded Brent
+search over the arc-length coordinate (each evaluation a converged solution on the hyperplane
+normal to the local tangent).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from ringdamper.nonlinear.friction import FrictionContacts
+from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
+from ringdamper.nonlinear.continuation import Status, StepControl, arclength
+from ringdamper.nonlinear.forced import ForcedProblem
+from ringdamper.nonlinear.fourier import default_nt
+from ringdamper.nonlinear.newton import newton
+from ringdamper.nonlinear.response import response_harmonics, time_peak
+from ringdamper.nonlinear.structure import Structure
+
+
+@dataclass
+class FRF:
+    """Forced-response branch: per point ``omega`` [rad/s], ``q_h1`` (first-harmonic magnitude
+    of the response DoF), ``q_peak`` (peak of its time signal) [m] and ``drift`` (relative mean
+    force on a gauged free body, see :mod:`ringdamper.nonlinear.condensed`); ``status`` 0 when the
+    branch reached ``omega_end`` (DRIFT if a point's drift exceeds ``drift_tol``);
+    ``points``/``tangents``/``scales`` of the continuation."""
+
+    gamma: float
+    zeta_s: float
+    omega: np.ndarray
+    q_h1: np.ndarray
+    q_peak: np.ndarray
+    drift: np.ndarray
+    status: int
+    reason: str
+    points: list = field(repr=False)
+    tangents: list = field(repr=False)
+    scales: list = field(repr=False)
+    problem: ForcedProblem = field(repr=False)
+    tol: float = 1e-10
+    max_iter: int = 20
+    wall_time: float = 0.0
+
+
+@dataclass
+class Peak:
+    """Resonance peak: ``omega`` [rad/s], ``q_h1``, ``q_peak`` [m], ``index`` of the nearest
+    branch point, ``refined`` (False if the maximum sits at an end of the branch or the
+    refinement failed), and the converged state ``z``."""
+
+    omega: float
+    q_h1: float
+    q_peak: float
+    index: int
+    refined: bool
+    z: np.ndarray = field(repr=False)
+
+
+def forced_response(structure: Structure, contacts: FrictionContacts, gamma: float,
+                    omega_start: float, omega_end: float, *, H: int = 1, nt: int | None = None,
+                    zeta_s: float = 0.0, pole_band: float = 0.05, tol: float = 1e-8,
+                    max_iter: int = 20, steps: StepControl | None = None,
+                    max_points: int = 1000, drift_tol: float = 1e-8) -> FRF:
+    """Forced response at forcing amplitude ``gamma`` [N] from ``omega_start`` to ``omega_end``.
+
+    ``steps`` controls the arc length measured on unknowns scaled by their running maxima (times
+    √n) and ω by ``|omega_end − omega_start|`` (default initial 0.02, min 1e-6, max 0.1). ``pole_band``
+    keeps modes with ``ω_r ∈ h·[ω_lo(1−pole_band), ω_hi(1+pole_band)]`` explicit.
+    """
+    t0 = time.perf_counter()
+    nt = default_nt(H) if nt is None else nt
+    steps = steps or StepControl(initial=0.02, minimum=1e-6, maximum=0.1)
+    lo, hi = sorted((omega_start, omega_end))
+    explicit = pole_modes(structure, H, lo * (1 - pole_band), hi * (1 + pole_band)) \
+        if pole_band > 0 else None
+    damping = [structure.modal(h).damping(zeta_s) for h in range(H + 1)]
+    model = CondensedHBM(structure, contacts, H, nt, explicit=explicit, damping=damping,
+                         forced=True, gamma=gamma)
+    problem = ForcedProblem(model)
+    y0 = problem.linear_guess(omega_start, contacts.stuck_stiffness().ravel())
+    res = newton(problem.at_frequency(omega_start), y0, model.core_scale, tol, max_iter)
+    if not res.converged:
+        return _frf(gamma, zeta_s, [], [], [], Status.NO_CONVERGENCE,
+                    f"start point: {res.reason}", problem, tol, max_iter, drift_tol, t0)
+    model.accept(res.z, res.payload)
+    z0 = np.r_[res.z, omega_start]
+    span = abs(omega_end - omega_start)
+    sign = np.sign(omega_end - omega_start)
+
+    root_n = np.sqrt(model.n_core)
+
+    def rescale(z, scale):
+        """Running maxima of the unknowns, the response part weighted by ``1/√n`` so that the arc
+        length measures the RMS relative change of the response and the relative change of ω
+        alike (otherwise hundreds of contact unknowns would dominate the step)."""
+        return np.maximum(scale, np.r_[root_n * model.core_scale(z[:-1]), span])
+
+    direction = np.zeros(z0.size)
+    direction[-1] = sign
+    run = arclength(problem.fun, z0, direction, rescale(z0, np.zeros(z0.size)), steps, tol,
+                    max_iter, stop=lambda z: sign * (z[-1] - omega_end) >= 0,
+                    max_points=max_points, rescale=rescale,
+                    accept=lambda z, ev: model.accept(z[:-1], ev))
+    return _frf(gamma, zeta_s, run.points, run.tangents, run.scales, run.status, run.reason,
+                problem, tol, max_iter, drift_tol, t0)
+
+
+def _frf(gamma, zeta_s, points, tangents, scales, status, reason, problem, tol, max_iter,
+         drift_tol, t0):
+    model = problem.model
+    omega = np.array([p.z[-1] for p in points])
+    h1, peak = np.array([_measures(model, p.payload) for p in points]).reshape(-1, 2).T
+    drift = np.array([model.relative_drift(p.payload) for p in points])
+    if status == Status.CONVERGED and np.any(drift > drift_tol):
+        status = Status.DRIFT
+        reason = (f"mean force on a free body up to {drift.max():.2e} (relative): no periodic "
+                  "response there, the body ratchets")
+    return FRF(gamma=gamma, zeta_s=zeta_s, omega=omega, q_h1=h1, q_peak=peak, drift=drift,
+               status=int(status), reason=reason, points=points, tangents=tangents, scales=scales,
+               problem=problem, tol=tol, max_iter=max_iter, wall_time=time.perf_counter() - t0)
+
+
+def _measures(model: CondensedHBM, ev) -> tuple[float, float]:
+    q = response_harmonics(model.modal, ev.eta)
+    return abs(q[1]), time_peak(q)
+
+
+def resonance_peak(frf: FRF, measure: str = "peak", xtol: float = 1e-12) -> Peak:
+    """Maximum of ``measure`` (``"peak"``: time-signal peak; ``"h1"``: first-harmonic magnitude)
+    along the branch, refined between the neighbours of the best point."""
+    if measure not in ("peak", "h1"):
+        raise ValueError("measure must be 'peak' or 'h1'")
+    if not frf.points:
+        raise ValueError("empty forced response")
+    k = 1 if measure == "peak" else 0
+    values = frf.q_peak if k else frf.q_h1
+    i = int(np.argmax(values))
+    best = Peak(frf.omega[i], frf.q_h1[i], frf.q_peak[i], i, False, frf.points[i].z)
+    if i == 0 or i == len(frf.points) - 1:
+        return best
+    model, problem = frf.problem.model, frf.problem
+    model.accept(frf.points[i].z[:-1], frf.points[i].payload)      # gauge state of the best point
+    scale, t = frf.scales[i], frf.tangents[i]
+    zi = frf.points[i].z
+    plane = t / scale
+    sig = [plane @ (frf.points[j].z - zi) for j in (i - 1, i + 1)]
+    if not sig[0] < 0 < sig[1]:
+        return best
+    cache = {}
+
+    def solve(sigma):
+        j = i - 1 if sigma < 0 else i + 1
+        w = sigma / sig[0 if sigma < 0 else 1]
+        guess = zi + w * (frf.points[j].z - zi)
+
+        def bordered(z, jac):
+            r, J, trivial, n_core, ev = problem.fun(z, jac)
+            Jb = np.vstack([J, plane]) if jac else None
+            return np.r_[r, plane @ (z - zi) - sigma], Jb, trivial, n_core, ev
+
+        res = newton(bordered, guess, lambda _: scale, frf.tol, frf.max_iter)
+        cache[sigma] = res
+        return res
+
+    def objective(sigma):
+        res = solve(sigma)
+        return -_measures(model, res.payload)[k] if res.converged else 0.0
+
+    opt = minimize_scalar(objective, bounds=(sig[0], sig[1]), method="bounded",
+                          options={"xatol": xtol})
+    res = cache.get(opt.x) or solve(opt.x)
+    if not res.converged:
+        return best
+    h1, pk = _measures(model, res.payload)
+    if (pk if k else h1) < values[i]:
+        return best
+    return Peak(res.z[-1], h1, pk, i, True, res.z)

@@ -1,0 +1,149 @@
+"""Newton–Raphson on dense Jacobians with exact elimination of trivial unknowns.
+
+The condensed HBM Jacobian (:mod:`ringdamper.nonlinear.condensed`) has unit-vector columns for the
+contact coordinates of pairs whose contact Jacobian vanishes (open during the whole period, or
+decoupled): such an unknown appears only in its own row (identity) and possibly in the extra
+rows appended by the problem (normalisation, phase, arc-length). :class:`Factorization`
+eliminates them exactly before the LU factorisation, so the dense solve only involves the
+active pairs.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numpy as np
+import scipy.linalg as sla
+
+
+class Factorization:
+    """LU of ``J`` after eliminating the trivial unknowns ``T`` (columns ``e_i`` in the first
+    ``n_core`` rows): ``x_T = b_T − J[T, N] x_N`` and the Schur system on the other unknowns."""
+
+    def __init__(self, J: np.ndarray, trivial: np.ndarray | None, n_core: int):
+        n = J.shape[0]
+        T = np.zeros(n, bool) if trivial is None else np.r_[trivial, np.zeros(n - trivial.size, bool)]
+        self.T, self.N = np.flatnonzero(T), np.flatnonzero(~T)
+        extra = self.N[self.N >= n_core]                     # rows that may touch T columns
+        self.JTN = J[np.ix_(self.T, self.N)]
+        self.JXT = J[np.ix_(extra, self.T)]
+        self.extra_pos = np.searchsorted(self.N, extra)
+        A = J[np.ix_(self.N, self.N)] if self.T.size else J
+        if self.T.size and extra.size:
+            A[self.extra_pos] -= self.JXT @ self.JTN
+        self.lu = sla.lu_factor(A, check_finite=False, overwrite_a=A is not J)
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        bN = b[self.N].copy()
+        if self.T.size and self.extra_pos.size:
+            bN[self.extra_pos] -= self.JXT @ b[self.T]
+        x = np.empty_like(b)
+        x[self.N] = sla.lu_solve(self.lu, bN, check_finite=False)
+        x[self.T] = b[self.T] - self.JTN @ x[self.N]
+        return x
+
+
+@dataclass
+class NewtonResult:
+    z: np.ndarray
+    converged: bool
+    iterations: int
+    payload: Any                      # the problem's evaluation at ``z``
+    factorization: Factorization | None
+    reason: str = ""
+    jacobians: int = 0                # Jacobian factorisations performed
+    effort: float = 0.0               # Jacobians + iterations / chord budget
+
+
+def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarray],
+           tol: float = 1e-10, max_iter: int = 20, factorization: Factorization | None = None,
+           theta_max: float = 0.5, chord_budget: int = 12,
+           lambda_min: float = 1.0 / 256) -> NewtonResult:
+    """Newton's method with Jacobian reuse and damping for ``r(z) = 0``.
+
+    ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)`` (``J`` None when not requested).
+    Converged when the step ``δz`` computed at ``z`` satisfies ``max |δz| / scale(z) ≤ tol``; ``z``
+    and its evaluation are returned (outputs are consistent with ``z``), with the factorisation
+    last used (a tangent predictor may reuse it).
+
+    Steps (after Deuflhard, *Newton Methods for Nonlinear Problems*, 2004):
+
+    * chord steps with the given (or last) factorisation while they contract (rate
+      θ < ``theta_max``) and the iterations still needed at that rate stay within
+      ``chord_budget`` (a chord step costs a residual, far less than a Jacobian and its LU);
+      otherwise the Jacobian is recomputed at the better point;
+    * after a fresh Jacobian, a damped step ``λ δz``: accepted when the simplified correction
+      ``J⁻¹ r(z + λδz)`` is shorter than ``(1 − λ/4) |δz|`` (natural monotonicity test), else λ
+      is halved down to ``lambda_min``. This breaks the cycles plain Newton falls into on the
+      piecewise-linear AFT residual near stick–slip transitions.
+
+    ``max_iter`` bounds the Newton (fresh Jacobian) iterations; all iterations together are
+    bounded by ``4 max_iter``. The decisions depend only on the iterates (no timing), so runs
+    are reproducible. ``effort`` = Jacobians + iterations / ``chord_budget``.
+    """
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        res = _iterate(fun, np.array(z0, float), scale, tol, max_iter, factorization,
+                       theta_max, chord_budget, lambda_min)
+    res.effort = res.jacobians + res.iterations / chord_budget
+    return res
+
+
+def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_min):
+    n_jac = n_newton = it = 0
+    fresh = fac is None
+    ev = fun(z, fresh)
+    dz = None                                    # correction of ``ev`` with ``fac``, if known
+    while True:
+        if fresh:
+            if ev[1] is None:
+                ev = fun(z, True)
+            r, J, trivial, n_core, payload = ev
+            if not (np.all(np.isfinite(r)) and np.all(np.isfinite(J))):
+                return NewtonResult(z, False, it, payload, None, "non-finite residual or Jacobian",
+                                    n_jac)
+            fac = Factorization(J, trivial, n_core)
+            n_jac += 1
+            dz = None
+        payload = ev[4]
+        if dz is None:
+            dz = _correction(fac, ev[0])
+        sc = scale(z)
+        step = np.max(np.abs(dz) / sc)
+        if not np.isfinite(step):
+            if fresh:
+                return NewtonResult(z, False, it, payload, fac, "singular Jacobian", n_jac)
+            fresh = True
+            continue
+        if step <= tol:
+            return NewtonResult(z, True, it, payload, fac, "", n_jac)
+        if n_newton >= max_iter or it >= 4 * max_iter:
+            break
+        it += 1
+        if fresh:                                    # damped Newton step
+            n_newton += 1
+            lam = 1.0
+            while True:
+                trial = fun(z + lam * dz, False)
+                corr = _correction(fac, trial[0])
+                bar = np.max(np.abs(corr) / sc)
+                if bar <= (1.0 - lam / 4) * step or lam <= lambda_min:
+                    break
+                lam *= 0.5
+            z, ev, dz, fresh = z + lam * dz, trial, corr, lam < 1.0
+            continue
+        trial = fun(z + dz, False)                   # chord step
+        corr = _correction(fac, trial[0])
+        theta = np.max(np.abs(corr) / sc) / step
+        if theta < theta_max:
+            needed = np.log(tol / (theta * step)) / np.log(theta) if theta > 0 else 0.0
+            if needed <= chord_budget:
+                z, ev, dz = z + dz, trial, corr
+                continue
+        if theta < 1:
+            z, ev = z + dz, trial
+        fresh = True
+    return NewtonResult(z, False, it, payload, fac, f"no convergence in {it} iterations", n_jac)
+
+
+def _correction(fac, r):
+    return fac.solve(-r) if np.all(np.isfinite(r)) else np.full(r.size, np.inf)

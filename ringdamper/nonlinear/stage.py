@@ -1,0 +1,157 @@
+"""dNNM + E-EBM stage of one geometry (paper §2.5.3; docs/design.md §3.4, §4): reduced.nc + static.nc -> dnnm.nc.
+
+The reduced model is read in its own modal coordinates: per harmonic h, mass-normalised modes with
+eigenvalues w_r^2, their relative contact coordinates B phi_r and their response (blade-tip Z) value
+phi_r,tip. In these coordinates M_h = I, K_h = diag(w_r^2), B_h = [B phi_r], the response row is
+[phi_r,tip] and the harmonic-1 forcing (unit Z force at the tip) is its conjugate: an exact
+representation of the reduced model, so the condensation of ``nonlinear.condensed`` sums over all of it.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+
+import numpy as np
+import xarray as xr
+
+from ringdamper.nonlinear.friction import FrictionContacts
+from ringdamper.nonlinear.eebm import eebm
+from ringdamper.nonlinear.epmc import epmc
+from ringdamper.nonlinear.structure import HarmonicData, Structure
+from ringdamper.io import variable
+from ringdamper.nonlinear.normalisation import normalised_frequency
+
+log = logging.getLogger(__name__)
+
+
+def structure_from_reduced(reduced: xr.Dataset, n_harmonics: int) -> Structure:
+    """Per-harmonic modal data of ``reduced.nc`` as a cyclic :class:`Structure` (h = 0..H)."""
+    H = int(n_harmonics)
+    available = int(reduced.sizes["harmonic"]) - 1
+    if H > available:
+        raise ValueError(f"dnnm.n_harmonics = {H} exceeds the {available} harmonics of reduced.nc")
+    data = []
+    for h in range(H + 1):
+        r = reduced.isel(harmonic=h)
+        w2 = r.omega2.values
+        contact = r.contact_shape_real.values + 1j * r.contact_shape_imag.values   # (mode, pair, dir)
+        psi = contact.reshape(len(w2), -1).T                                       # (3 pairs, mode)
+        res = r.response_shape_real.values + 1j * r.response_shape_imag.values
+        if h == 0:
+            psi, res = psi.real, res.real
+        force = np.conj(res) if h == 1 else np.zeros_like(res)
+        data.append(HarmonicData(M=np.eye(len(w2)), K=np.diag(w2), B=psi, response=res, force=force))
+    return Structure(data, n_sectors=int(reduced.attrs["n_sectors"]),
+                     engine_order=int(reduced.attrs["engine_order"]))
+
+
+def contacts_from_static(static: xr.Dataset, contact_cfg: dict, law: str = "jenkins") -> FrictionContacts:
+    """Friction elements from the static state: preload N0 on closed pairs, gap on open ones."""
+    n0 = static.N0.values
+    return FrictionContacts(kn=static.kn.values, kt=static.kt.values,
+                            mu=contact_cfg["friction_coefficient"],
+                            N0=np.where(n0 > 0, n0, 0.0), gap=np.where(n0 > 0, 0.0, static.gap.values),
+                            law=law)
+
+
+def target_stuck_frequency(structure: Structure, contacts: FrictionContacts, target_hz: float) -> float:
+    """Linearised stuck frequency (rad/s) of the harmonic-1 mode nearest ``target_hz``."""
+    omegas, _ = structure.stuck_modes(contacts.stuck_stiffness().ravel(), h=1)
+    return float(omegas[np.argmin(np.abs(omegas - 2 * np.pi * target_hz))])
+
+
+def amplitude_grid(dnnm_cfg: dict) -> np.ndarray:
+    """The common modal-amplitude grid alpha (kg^1/2 m), log-spaced (docs/design.md §4)."""
+    return np.geomspace(dnnm_cfg["amplitude_min"], dnnm_cfg["amplitude_max"], dnnm_cfg["n_amplitudes"])
+
+
+def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: float,
+             omega_stuck_default: float) -> xr.Dataset:
+    """Backbone (EPMC) of the mode nearest ``target_hz`` and its E-EBM, as the dnnm.nc dataset."""
+    cfg = config["dnnm"]
+    start = time.perf_counter()
+    structure = structure_from_reduced(reduced, cfg["n_harmonics"])
+    contacts = contacts_from_static(static, config["contact"], cfg["friction_law"])
+    alpha = amplitude_grid(cfg)
+    omega_stuck = target_stuck_frequency(structure, contacts, target_hz)
+    backbone = epmc(structure, contacts, alpha, H=cfg["n_harmonics"], nt=cfg["n_time_samples"],
+                    omega_target=omega_stuck)
+    res = eebm(backbone, zeta_s=cfg["structural_damping_ratio"])
+    m = structure.npairs
+    coords = {"amplitude": variable("amplitude", alpha, "kg0.5 m",
+                                    "modal amplitude alpha (mass-normalised fundamental)"),
+              "pair": variable("pair", np.arange(m), "1", "contact pair index")}
+    data = {
+        "omega0": variable("amplitude", normalised_frequency(res.omega, omega_stuck_default),
+                           "1", "normalised resonant frequency 2.195 omega / omega_stuck,default"),
+        "frequency": variable("amplitude", res.frequency, "Hz", "resonant frequency"),
+        "zeta": variable("amplitude", res.zeta, "1", "modal damping ratio of the dNNM"),
+        "gamma": variable("amplitude", res.gamma, "N", "forcing level (E-EBM)"),
+        "phi": variable("amplitude", res.phi, "rad", "forcing phase (E-EBM)"),
+        "q_res_z": variable("amplitude", res.q_res_peak, "m",
+                            "peak of the blade-tip Z displacement over the period"),
+        "q_res_z_h1": variable("amplitude", res.q_res_h1, "m",
+                               "first-harmonic magnitude of the blade-tip Z displacement"),
+        "energy_dissipated": variable(("amplitude", "pair"), res.energy_dissipated, "J",
+                                      "energy dissipated per cycle by each contact pair"),
+        "energy_damping": variable("amplitude", res.e_damp, "J",
+                                   "energy per cycle of the structural and dNNM damping (E-EBM E_damp)"),
+        "rigid_body_imbalance": variable(
+            "amplitude", backbone.drift, "1",
+            "mean force on the ring's free rigid-body modes (rotation about Z, axial) held by the gauge, "
+            "relative to the contact forces: the ratcheting drive"),
+        "status": variable("amplitude", res.status.astype(np.int8), "1",
+                           "0 converged, 1 no convergence, 2 not reached, 3 converged with the ring's "
+                           "mean rigid-body equilibrium unbalanced (ratcheting), 4 budget"),
+    }
+    attrs = {"kappa": np.asarray(static.attrs["kappa"], dtype=float), "n_harmonics": cfg["n_harmonics"],
+             "n_time_samples": cfg["n_time_samples"], "friction_law": cfg["friction_law"],
+             "structural_damping_ratio": cfg["structural_damping_ratio"],
+             "omega_stuck": omega_stuck, "omega_stuck_default": omega_stuck_default,
+             "wall_time_s": time.perf_counter() - start}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def failed_dnnm(config: dict, kappa, reason: str, status: int = 99) -> xr.Dataset:
+    """dnnm.nc of a geometry whose chain failed: every point carries ``status`` and the reason."""
+    alpha = amplitude_grid(config["dnnm"])
+    nan = np.full(len(alpha), np.nan)
+    names = {"omega0": ("1", "normalised resonant frequency"), "frequency": ("Hz", "resonant frequency"),
+             "zeta": ("1", "modal damping ratio"), "gamma": ("N", "forcing level (E-EBM)"),
+             "phi": ("rad", "forcing phase"), "q_res_z": ("m", "peak blade-tip Z displacement"),
+             "q_res_z_h1": ("m", "first-harmonic blade-tip Z displacement")}
+    data = {k: variable("amplitude", nan, u, ln) for k, (u, ln) in names.items()}
+    data["status"] = variable("amplitude", np.full(len(alpha), status, np.int8), "1", "failure status")
+    return xr.Dataset(data, coords={"amplitude": variable("amplitude", alpha, "kg0.5 m", "modal amplitude")},
+                      attrs={"kappa": np.asarray(kappa, dtype=float), "reason": reason})
+
+
+def default_normalisation(reduced: xr.Dataset, static: xr.Dataset, config: dict,
+                          target_hz: float) -> dict:
+    """What every geometry's dNNM is normalised by, computed once on the default ring: the target
+    frequency of the modal stage and the default ring's linearised stuck frequency of the harmonic-1
+    mode nearest it, ``omega_stuck_default_rad_s`` (the reference of ``normalised_frequency``)."""
+    structure = structure_from_reduced(reduced, 1)
+    contacts = contacts_from_static(static, config["contact"], config["dnnm"]["friction_law"])
+    omega = target_stuck_frequency(structure, contacts, target_hz)
+    log.info("omega_stuck_default = %.6f rad/s", omega)
+    return {"target_frequency_hz": float(target_hz), "omega_stuck_default_rad_s": omega}
+
+
+def dnnm_stage(reduced: xr.Dataset, static: xr.Dataset, config: dict, kappa,
+               normalisation: dict) -> xr.Dataset:
+    """The dNNM stage of geometry ``kappa`` (``normalisation`` from :func:`default_normalisation`).
+    It never raises: a failed static state or solve gives :func:`failed_dnnm` (status 99 and the
+    reason), so the campaign goes on."""
+    try:
+        if static.attrs["status"] != 0:
+            raise RuntimeError(f"static solve failed: {static.attrs['reason']}")
+        ds = run_dnnm(reduced, static, config, normalisation["target_frequency_hz"],
+                      normalisation["omega_stuck_default_rad_s"])
+    except Exception as err:  # a failed geometry must not stop the campaign
+        log.exception("dNNM stage failed for kappa=%s", list(kappa))
+        return failed_dnnm(config, kappa, f"{type(err).__name__}: {err}")
+    counts = np.bincount(ds.status.values.astype(int), minlength=5)
+    log.info("kappa=%s status counts %s wall %.1f s", list(kappa), counts.tolist(), ds.attrs["wall_time_s"])
+    return ds

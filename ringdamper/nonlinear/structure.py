@@ -1,0 +1,158 @@
+"""The linear structure seen by the harmonic balance: one matrix set per harmonic (docs/design.md §3.3–3.4).
+
+Harmonic ``h`` of the reference sector obeys ``(K_h − h²ω² M_h + ihω C_h) Q_h + B_hᴴ Λ_h = F_h``
+(Galerkin projection, Hermitian ``M_h``, ``K_h``), where ``d_h = B_h Q_h`` are the harmonics of the
+stacked relative contact coordinates ``[d_n, d_t1, d_t2]`` of every pair. For a cyclic structure of
+``N`` sectors excited by engine order ``EO`` (travelling wave), harmonic ``h`` of sector ``j`` is
+harmonic ``h`` of the reference sector times ``e^{iσ_h j}``, ``σ_h = −2π h EO / N`` (nodal diameter
+``h·EO mod N``), so ``(M_h, K_h, B_h)`` are the sector matrices under ``u_{j+1} = e^{iσ_h} u_j``.
+Harmonic 0 is ND 0 and real. A non-cyclic structure uses the same real matrices for every ``h``.
+
+Each harmonic is diagonalised once (``K_h φ = ω_r² M_h φ``, ``φᴴ M_h φ = 1``, all modes): this is
+what the exact condensation of :mod:`ringdamper.nonlinear.condensed` sums over.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Sequence
+
+import numpy as np
+import scipy.linalg as sla
+
+from ringdamper.fem.cyclic import interblade_phase, nodal_diameter  # noqa: F401 (re-exported)
+
+
+@dataclass
+class HarmonicData:
+    """Linear data of one harmonic: ``M``, ``K`` (n × n, Hermitian), ``B`` (p × n, contact relative
+    coordinates), ``response`` (n,) row giving the response DoF, ``force`` (n,) forcing vector
+    (None: unforced), ``C`` optional damping matrix (must be diagonal in the modes)."""
+
+    M: np.ndarray
+    K: np.ndarray
+    B: np.ndarray
+    response: np.ndarray
+    force: np.ndarray | None = None
+    C: np.ndarray | None = None
+
+
+@dataclass
+class ModalHarmonic:
+    """Modes of one harmonic: ``w2`` (ω_r², zero modes set to exactly 0), ``Phi`` (n × m,
+    mass-normalised), ``Psi = B Phi`` (p × m), modal force ``f = Phiᴴ force``, modal response row
+    ``res = response Phi``, modal damping ``c = diag(Phiᴴ C Phi)`` (None without ``C``), and the
+    boolean mask ``zero`` of zero-frequency (rigid-body) modes."""
+
+    h: int
+    w2: np.ndarray
+    Phi: np.ndarray
+    Psi: np.ndarray
+    f: np.ndarray
+    res: np.ndarray
+    c: np.ndarray | None
+    zero: np.ndarray = field(repr=False)
+
+    def damping(self, zeta_s: float | np.ndarray = 0.0) -> np.ndarray:
+        """Modal damping coefficients ``c_r`` (``q̇`` term ``c_r η̇_r``): from ``C`` if given,
+        else ``2 ζ_s ω_r`` (modal damping ratio ζ_s, scalar or per mode)."""
+        if self.c is not None:
+            return self.c
+        return 2.0 * np.asarray(zeta_s, float) * np.sqrt(self.w2)
+
+
+class Structure:
+    """Per-harmonic linear structure for harmonics ``0..H_max`` (``harmonics[h]``)."""
+
+    def __init__(self, harmonics: Sequence[HarmonicData], zero_tol: float = 1e-9,
+                 n_sectors: int | None = None, engine_order: int | None = None):
+        self.harmonics = list(harmonics)
+        self.zero_tol = zero_tol
+        self.n_sectors, self.engine_order = n_sectors, engine_order
+        p = {hd.B.shape[0] for hd in self.harmonics}
+        if len(p) != 1:
+            raise ValueError("every harmonic must map onto the same contact coordinates")
+        self.p = p.pop()
+        if self.p % 3:
+            raise ValueError("B must have 3 rows (n, t1, t2) per contact pair")
+        for h, hd in enumerate(self.harmonics):
+            n = hd.M.shape[0]
+            if hd.K.shape != (n, n) or hd.B.shape[1] != n or hd.response.shape != (n,):
+                raise ValueError(f"harmonic {h}: inconsistent matrix shapes")
+        h0 = self.harmonics[0]
+        if any(np.iscomplexobj(a) and np.any(np.abs(np.imag(a)) > 0)
+               for a in (h0.M, h0.K, h0.B)):
+            raise ValueError("harmonic 0 (ND 0) matrices must be real")
+        self._eig_cache: dict = {}
+        self._modal_cache: dict[int, ModalHarmonic] = {}
+
+    @property
+    def H_max(self) -> int:
+        return len(self.harmonics) - 1
+
+    @property
+    def npairs(self) -> int:
+        return self.p // 3
+
+    @classmethod
+    def real(cls, M, K, B, response, force, H: int, C=None, zero_tol: float = 1e-9) -> "Structure":
+        """Non-cyclic structure: the same real matrices for every harmonic, ``force`` on
+        harmonic 1 only."""
+        n = M.shape[0]
+        zero = np.zeros(n)
+        data = [HarmonicData(M, K, B, response, zero if h != 1 else force, C) for h in range(H + 1)]
+        return cls(data, zero_tol=zero_tol)
+
+    @classmethod
+    def cyclic(cls, n_sectors: int, engine_order: int, H: int,
+               sector: Callable[[int, float], HarmonicData], zero_tol: float = 1e-9) -> "Structure":
+        """Cyclic travelling-wave structure: ``sector(h, σ_h)`` returns the reference-sector data
+        of harmonic ``h`` under ``u_{j+1} = e^{iσ_h} u_j``, ``σ_h`` from :func:`interblade_phase`."""
+        data = [sector(h, interblade_phase(h, n_sectors, engine_order)) for h in range(H + 1)]
+        return cls(data, zero_tol=zero_tol, n_sectors=n_sectors, engine_order=engine_order)
+
+    def modal(self, h: int) -> ModalHarmonic:
+        """Modal decomposition of harmonic ``h`` (cached; matrices shared between harmonics are
+        diagonalised once)."""
+        if h in self._modal_cache:
+            return self._modal_cache[h]
+        hd = self.harmonics[h]
+        key = (id(hd.K), id(hd.M))
+        if key not in self._eig_cache:
+            self._eig_cache[key] = _mass_normalised_modes(hd.K, hd.M, real=(h == 0))
+        w2, Phi = self._eig_cache[key]
+        zero = w2 <= self.zero_tol * max(np.max(np.abs(w2)), np.finfo(float).tiny)
+        w2 = np.where(zero, 0.0, w2)
+        if h > 0 and np.any(w2 < 0):
+            raise ValueError(f"harmonic {h}: K_h is not positive semi-definite")
+        f = Phi.conj().T @ hd.force if hd.force is not None else np.zeros(Phi.shape[1], complex)
+        c = None
+        if hd.C is not None:
+            Cm = Phi.conj().T @ hd.C @ Phi
+            off = Cm - np.diag(np.diag(Cm))
+            if np.max(np.abs(off)) > 1e-8 * max(np.max(np.abs(Cm)), np.finfo(float).tiny):
+                raise ValueError(f"harmonic {h}: C is not diagonal in the modes; the exact modal "
+                                 "condensation needs modal (e.g. proportional) damping")
+            c = np.real(np.diag(Cm))
+        mh = ModalHarmonic(h=h, w2=w2, Phi=Phi, Psi=hd.B @ Phi, f=f, res=hd.response @ Phi,
+                           c=c, zero=zero)
+        if h == 0:
+            mh.Psi, mh.f, mh.res = mh.Psi.real, mh.f.real, mh.res.real
+        self._modal_cache[h] = mh
+        return mh
+
+    def stuck_modes(self, stiffness: np.ndarray, h: int = 1):
+        """Modes of harmonic ``h`` with linear contact springs ``stiffness`` (p,) added, i.e. the
+        linearised stuck system ``K_h + B_hᴴ diag(k) B_h``: returns ``(ω, Φ)``, ω ascending."""
+        hd = self.harmonics[h]
+        K = hd.K + hd.B.conj().T @ (stiffness[:, None] * hd.B)
+        w2, Phi = _mass_normalised_modes(K, hd.M, real=(h == 0))
+        return np.sqrt(np.maximum(w2, 0.0)), Phi
+
+
+def _mass_normalised_modes(K, M, real: bool):
+    K = 0.5 * (K + K.conj().T)
+    M = 0.5 * (M + M.conj().T)
+    if real:
+        K, M = np.real(K), np.real(M)
+    w2, Phi = sla.eigh(K, M)
+    return w2, Phi

@@ -1,0 +1,141 @@
+"""Static contact stage (paper §2.4, §3.1.2; docs/design.md §3.2): N0 and gap of every contact pair.
+
+The sector (blisk + ring, linear elastic) is solved at operating speed with the ND-0 cyclic
+constraint u_R = R_z(2 pi / N) u_L (``fem.cyclic``), the bore clamped, the centrifugal body force
+f = rho Omega^2 (x, y, 0) and the spin softening -Omega^2 M_r (the centrifugal force follows the
+displaced material). Contact: one node-to-node pair per ring upper-surface node, normal law of
+``static.method`` (penalty kn x area: the law of the dynamic element, so N0 is consistent with it;
+or exact unilateral contact), tangential sticking springs kt x area that make the ring's rotation
+about Z and its axial translation determinate. Geometric nonlinearity is neglected: the strains are
+~1e-4 and the static problem is only needed for the contact state.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+import xarray as xr
+
+from ringdamper.static.solver import StaticContactResult, solve_static_contact
+from ringdamper.fem.cyclic import cyclic_transform, project
+from ringdamper.fem.elasticity import centrifugal_load
+from ringdamper.fem.contact_law import pair_stiffness
+from ringdamper.fem.model import SectorModel, build_model, node_dofs, relative_displacement_operator
+from ringdamper.fem.prestress import rpm_to_rad_s, spin_mass
+from ringdamper.geometry.sector import BODY_RING, build_sector
+from ringdamper.io import variable
+
+log = logging.getLogger(__name__)
+
+
+@dataclass
+class StaticProblem:
+    """ND-0 sector matrices reduced to the independent DoFs, and the contact data."""
+
+    K: sp.csr_matrix
+    f: np.ndarray
+    G: sp.csr_matrix
+    T: sp.csr_matrix
+    kn: np.ndarray
+    kt: np.ndarray
+
+
+def static_problem(model: SectorModel, config: dict, speed_rpm: float,
+                   rigid_blisk: bool = False) -> StaticProblem:
+    """Assemble the ND-0 static contact problem (``rigid_blisk`` clamps the whole blisk: an oracle)."""
+    omega = rpm_to_rad_s(speed_rpm)
+    fixed = model.fixed_dofs
+    if rigid_blisk:
+        fixed = np.union1d(fixed, node_dofs(np.flatnonzero(model.node_body != BODY_RING)))
+    T, _ = cyclic_transform(model.n_dofs, model.left_nodes, model.right_nodes, fixed,
+                            model.sector_angle, 0.0)
+    K = project(T, model.K - omega**2 * spin_mass(model))
+    f = T.T @ centrifugal_load(model.basis, model.material["density"], omega)
+    G = (relative_displacement_operator(model) @ T).tocsr()
+    kn, kt = pair_stiffness(model.pairs.area, config["contact"])
+    return StaticProblem(K=K, f=f, G=G, T=T, kn=kn, kt=kt)
+
+
+def solve_static(model: SectorModel, config: dict, speed_rpm: float | None = None,
+                 rigid_blisk: bool = False, kn=None) -> tuple[StaticContactResult, StaticProblem]:
+    """Solve the static contact problem; ``kn`` overrides the configured normal stiffness."""
+    speed = config["operation"]["speed_rpm"] if speed_rpm is None else speed_rpm
+    prob = static_problem(model, config, speed, rigid_blisk)
+    if kn is not None:
+        prob.kn = np.broadcast_to(np.asarray(kn, dtype=float), prob.kn.shape).copy()
+    s = config["static"]
+    result = solve_static_contact(prob.K, prob.f, prob.G, np.zeros(len(model.pairs)), prob.kn, prob.kt,
+                                  method=s["method"], tol=s["tolerance"], max_iter=s["max_iterations"])
+    return result, prob
+
+
+def static_dataset(model: SectorModel, result: StaticContactResult, prob: StaticProblem,
+                   kappa, speed_rpm: float) -> xr.Dataset:
+    """``static.nc`` (docs/design.md §4): per pair N0, gap, in_contact, position, frame; KKT in the attrs."""
+    pairs = model.pairs
+    m = len(pairs)
+    frame = pairs.frame
+    coords = {"pair": variable("pair", np.arange(m), "1", "contact pair index"),
+              "direction": variable("direction", ["n", "t1", "t2"], "1", "local frame axis"),
+              "component": variable("component", ["x", "y", "z"], "1", "Cartesian component")}
+    finite = np.all(np.isfinite(result.N0))
+    data = {
+        "x": variable("pair", pairs.position[:, 0], "m", "pair position x (at rest)"),
+        "y": variable("pair", pairs.position[:, 1], "m", "pair position y (at rest)"),
+        "z": variable("pair", pairs.position[:, 2], "m", "pair position z (at rest)"),
+        "N0": variable("pair", result.N0, "N", "static normal contact force (preload)"),
+        "gap": variable("pair", result.gap, "m", "static normal gap"),
+        "penetration": variable("pair", result.penetration, "m", "penalty penetration"),
+        "in_contact": variable("pair", result.in_contact.astype(np.int8), "1", "1 if N0 > 0"),
+        "tangential_force": variable(("pair", "direction"),
+                                     np.column_stack([np.zeros(m), result.tangential]) if finite
+                                     else np.full((m, 3), np.nan), "N",
+                                     "static tangential force of the sticking springs (t1, t2)"),
+        "area": variable("pair", pairs.area, "m2", "tributary contact area"),
+        "pressure": variable("pair", result.N0 / pairs.area, "Pa", "static contact pressure N0 / area"),
+        "frame": variable(("pair", "direction", "component"), frame, "1",
+                          "local frame: rows n (ring to blisk), t1 (circumferential), t2 (axial)"),
+        "kn": variable("pair", prob.kn, "N m-1", "normal contact stiffness"),
+        "kt": variable("pair", prob.kt, "N m-1", "tangential contact stiffness"),
+    }
+    attrs = {"kappa": np.asarray(kappa, dtype=float), "speed_rpm": float(speed_rpm),
+             "method": result.method, "iterations": int(result.iterations),
+             "equilibrium_residual": float(result.residual),
+             "complementarity_residual": float(result.complementarity),
+             "status": int(result.status), "reason": result.reason,
+             "n_in_contact": int(np.sum(result.in_contact)) if finite else -1}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def static_fields(model: SectorModel, result: StaticContactResult, prob: StaticProblem) -> dict:
+    """Point fields for ParaView: displacement, and N0 / gap on both nodes of each pair."""
+    n = len(model.nodes)
+    n0 = np.zeros(n)
+    gap = np.zeros(n)
+    for nodes in (model.pairs.ring_node, model.pairs.blisk_node):
+        n0[nodes] = result.N0
+        gap[nodes] = result.gap
+    u = (prob.T @ result.u).reshape(-1, 3) if np.all(np.isfinite(result.u)) else np.zeros((n, 3))
+    return {"displacement": u, "N0": n0, "gap": gap}
+
+
+def run_static(config: dict, kappa) -> tuple[xr.Dataset, SectorModel | None, dict | None]:
+    """The static stage of geometry ``kappa`` at the operating speed: (static.nc dataset, model,
+    static.vtu point fields). It never raises: a failure (meshing, assembly or solve) gives a
+    dataset with status 99 and the reason, and no model or fields, so the campaign goes on."""
+    speed = config["operation"]["speed_rpm"]
+    try:
+        model = build_model(build_sector(config, kappa), config)
+        result, prob = solve_static(model, config)
+    except Exception as err:  # a failed geometry must not stop the campaign
+        log.exception("static stage failed for kappa=%s", list(kappa))
+        return xr.Dataset(attrs={"kappa": np.asarray(kappa, dtype=float), "speed_rpm": speed,
+                                 "status": 99, "reason": f"{type(err).__name__}: {err}"}), None, None
+    ds = static_dataset(model, result, prob, kappa, speed)
+    log.info("kappa=%s status=%d (%s) iterations=%d in_contact=%d/%d residual=%.2e "
+             "complementarity=%.2e", list(kappa), result.status, result.reason, result.iterations,
+             ds.attrs["n_in_contact"], len(model.pairs), result.residual, result.complementarity)
+    return ds, model, static_fields(model, result, prob)

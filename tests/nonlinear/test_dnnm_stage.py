@@ -1,0 +1,57 @@
+"""dNNM stage on the real chain (coarse mesh): linear limit, energy balance, E-EBM, failure file."""
+import numpy as np
+import pytest
+
+from ringdamper.nonlinear.stage import (contacts_from_static, failed_dnnm, run_dnnm, structure_from_reduced,
+                                   target_stuck_frequency)
+from ringdamper.fem.model import build_model
+from ringdamper.geometry.sector import build_sector
+from ringdamper.io import check_contract
+from ringdamper.reduction import modal_basis, reduce_sector, reduced_dataset
+from ringdamper.static.stage import solve_static, static_dataset
+
+
+@pytest.fixture(scope="module")
+def chain(small_config):
+    cfg = {**small_config, "mesh": {**small_config["mesh"], "element_order": 2}}
+    model = build_model(build_sector(cfg, (0.0, 0.0, 0.0)), cfg)
+    result, prob = solve_static(model, cfg)
+    static = static_dataset(model, result, prob, (0.0, 0.0, 0.0), cfg["operation"]["speed_rpm"])
+    rs = reduce_sector(model, cfg["operation"]["engine_order"], n_harmonics=1, n_fi=20, n_if=10)
+    reduced = reduced_dataset(rs, (0.0, 0.0, 0.0), [modal_basis(rh, rs.B, rs.response_index)
+                                                    for rh in rs.harmonics])
+    structure = structure_from_reduced(reduced, 1)
+    contacts = contacts_from_static(static, cfg["contact"])
+    omegas, _ = structure.stuck_modes(contacts.stuck_stiffness().ravel(), h=1)
+    target_hz = omegas[1] / (2 * np.pi)  # the disk mode of the coarse model (1B is below it)
+    return cfg, reduced, static, structure, contacts, target_hz
+
+
+def test_linear_limit_and_energy_balance(chain):
+    cfg, reduced, static, structure, contacts, target_hz = chain
+    cfg = {**cfg, "dnnm": {**cfg["dnnm"], "structural_damping_ratio": 0.0}}
+    w_stuck = target_stuck_frequency(structure, contacts, target_hz)
+    ds = run_dnnm(reduced, static, cfg, target_hz, w_stuck)
+    check_contract(ds)
+    ok = np.isin(ds.status.values, (0, 3))
+    assert np.all(ok), ds.status.values            # the whole amplitude grid is reached
+    # linear limit: stuck frequency, no damping, normalised frequency 2.195 exactly
+    assert ds.frequency.values[0] * 2 * np.pi == pytest.approx(w_stuck, rel=1e-6)
+    assert ds.omega0.values[0] == pytest.approx(2.195, rel=1e-6)
+    assert abs(ds.zeta.values[0]) < 1e-8
+    # EPMC energy identity on the real chain (zeta_s = 0): the artificial damping's energy per
+    # cycle, pi omega sum h^2 xi |eta|^2, equals the energy the contact pairs dissipate (AFT)
+    e_d = ds.energy_dissipated.values.sum(axis=1)
+    slipping = ok & (ds.zeta.values > 1e-6)
+    assert slipping.sum() >= 2
+    assert np.allclose(ds.energy_damping.values[slipping], e_d[slipping], rtol=1e-6)
+    assert np.all(ds.gamma.values[slipping] > 0)
+    # softening: the frequency never rises above the stuck one along the backbone
+    assert np.all(ds.frequency.values[ok] <= ds.frequency.values[0] * (1 + 1e-9))
+
+
+def test_failed_geometry_writes_a_status_file(small_config):
+    ds = failed_dnnm(small_config, (0.1, 0.2, 0.3), "RuntimeError: static solve failed")
+    check_contract(ds)
+    assert np.all(ds.status.values == 99) and "static solve failed" in ds.attrs["reason"]
+    assert ds.sizes["amplitude"] == small_config["dnnm"]["n_amplitudes"]

@@ -1,0 +1,137 @@
+"""Analytical Jacobians against central finite differences, to 1e-6 relative: the
+contact AFT (both laws) in stick, slip, separation and mixed states, and the full condensed EPMC
+and forced residuals (explicit pole modes, rigid-body gauge, complex cyclic matrices)."""
+import zlib
+
+import numpy as np
+import pytest
+
+from ringdamper.nonlinear.friction import FrictionContacts, contact_aft
+from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
+from ringdamper.nonlinear.epmc import EPMCProblem
+from ringdamper.nonlinear.forced import ForcedProblem
+from ringdamper.nonlinear.fourier import Fourier
+
+from .systems import cyclic_structure, free_body, multi_dof
+
+STATES = {  # (tangential amplitude / a_s, normal amplitude / (N0/kn))
+    "stick": (0.05, 0.1),
+    "slip": (6.0, 0.2),
+    "separation": (1.5, 3.0),
+    "mixed": (1.2, 0.8),
+}
+
+
+def fd_jacobian(fun, x, step):
+    cols = []
+    for k in range(x.size):
+        e = np.zeros(x.size)
+        e[k] = step[k]
+        cols.append((fun(x + e) - fun(x - e)) / (2 * step[k]))
+    return np.array(cols).T
+
+
+@pytest.mark.parametrize("law", ["jenkins", "coulomb"])
+@pytest.mark.parametrize("state", list(STATES))
+def test_contact_jacobian(law, state):
+    rng = np.random.default_rng(zlib.crc32(f"{law}-{state}".encode()))
+    f = Fourier(3, 64)
+    kn, kt, mu, N0 = 1e5, 4e4, 0.3, 20.0
+    c = FrictionContacts(kn=kn, kt=kt, mu=mu, N0=N0, gap=0.0, law=law)
+    ta, na = STATES[state]
+    d = rng.standard_normal((1, 3, f.C)) * np.array([na * N0 / kn, ta * mu * N0 / kt,
+                                                    ta * mu * N0 / kt])[None, :, None]
+    res = contact_aft(c, f, d)
+    J = res.jac.reshape(3 * f.C, 3 * f.C)
+
+    def lam(x):
+        return contact_aft(c, f, x.reshape(d.shape), jacobian=False).lam.ravel()
+
+    Jfd = fd_jacobian(lam, d.ravel(), np.full(d.size, 1e-6 * np.max(np.abs(d))))
+    assert np.max(np.abs(J - Jfd)) <= 1e-6 * np.max(np.abs(Jfd))
+    closed = res.normal[0] > 0
+    if state == "separation":
+        assert (~closed).any()
+    if state == "stick":
+        blocks = res.jac[0]                                        # (3, C, 3, C)
+        for j in (1, 2):
+            assert np.allclose(blocks[j, :, j], kt * np.eye(f.C), atol=1e-9 * kt)
+        assert np.all(blocks[1:, :, 0] == 0)
+
+
+def _check_problem(fun, z, scale):
+    r0, J, *_ = fun(z)
+    Jfd = fd_jacobian(lambda x: fun(x)[0], z, 1e-7 * scale)
+    err = np.abs(J - Jfd)
+    assert np.max(err) <= 1e-6 * np.max(np.abs(Jfd)), np.unravel_index(np.argmax(err), err.shape)
+
+
+def _state(model, amp, rng):
+    y = np.zeros(model.n_core)
+    y[:model.n_d] = amp * rng.standard_normal(model.n_d)
+    y[model.n_d:] = amp * rng.standard_normal(model.n_core - model.n_d)
+    return y
+
+
+@pytest.mark.parametrize("amp", [2e-5, 3e-4])
+def test_epmc_residual_jacobian_multi_dof(amp):
+    st, c = multi_dof(H=3)
+    w0 = np.sqrt(st.modal(1).w2)
+    model = CondensedHBM(st, c, 3, 32, explicit=pole_modes(st, 3, 0.9 * w0[1], 1.1 * w0[1]))
+    assert sum(s.size for s in model.S) > 0
+    rng = np.random.default_rng(5)
+    z = np.r_[_state(model, amp, rng), 1.05 * w0[1], 3.0]
+    prob = EPMCProblem(model, phase_index=model.slot_index(1, True, 1))
+    _check_problem(lambda x: prob.fun(x, np.log(1e-3))[:2], z, prob.scale(z))
+
+
+def test_forced_residual_jacobian_cyclic():
+    st, c, _ = cyclic_structure(H=3)
+    damping = [st.modal(h).damping(0.01) for h in range(4)]
+    model = CondensedHBM(st, c, 3, 36, damping=damping, forced=True, gamma=5.0)
+    rng = np.random.default_rng(7)
+    z = np.r_[_state(model, 4e-4, rng), 90.0]
+    prob = ForcedProblem(model)
+    _check_problem(lambda x: prob.fun(x)[:2], z, prob.scale(z))
+
+
+@pytest.mark.parametrize("amp", [1e-5, 5e-3])                 # stuck: DC held; slipping: gauge
+def test_epmc_residual_jacobian_with_gauge(amp):
+    st, c = free_body(H=2)
+    model = CondensedHBM(st, c, 2, 32)
+    rng = np.random.default_rng(11)
+    y = np.zeros(model.n_core)
+    d = np.zeros((model.C, model.p))
+    d[:, 1] = amp * rng.standard_normal(model.C)
+    d[0, 1] *= 0.01
+    y[:model.n_d] = d.ravel()
+    y[model.n_d:] = amp * rng.standard_normal(model.n_core - model.n_d)
+    z = np.r_[y, 150.0, 2.0]
+    prob = EPMCProblem(model, phase_index=model.slot_index(1, True, 1))
+    ev = model.evaluate(y, 150.0, 2.0)
+    assert (ev.drift.size > 0) == (amp > 1e-3)                   # gauge active only in slip
+    _check_problem(lambda x: prob.fun(x, np.log(1e-3))[:2], z, prob.scale(z))
+
+
+@pytest.mark.parametrize("state", ["separation", "mixed", "slip"])
+def test_contact_jacobian_restarted_from_own_periodic_state(state):
+    """A continuation restarts the march from the periodic slider state of the point itself
+    (e.g. a re-solve at an accepted point): the state then equals the bounds it came from
+    exactly, and the Jacobian must still follow them (it once took the constant memory)."""
+    rng = np.random.default_rng(zlib.crc32(f"restart-{state}".encode()))
+    f = Fourier(3, 64)
+    kn, kt, mu, N0 = 1e5, 4e4, 0.3, 20.0
+    c = FrictionContacts(kn=kn, kt=kt, mu=mu, N0=N0, gap=0.0, law="jenkins")
+    ta, na = STATES[state]
+    d = rng.standard_normal((1, 3, f.C)) * np.array([na * N0 / kn, ta * mu * N0 / kt,
+                                                    ta * mu * N0 / kt])[None, :, None]
+    memory = contact_aft(c, f, d, jacobian=False).memory
+    res = contact_aft(c, f, d, memory=memory)
+    assert np.array_equal(res.memory, memory)                       # periodic state reproduced
+    J = res.jac.reshape(3 * f.C, 3 * f.C)
+
+    def lam(x):
+        return contact_aft(c, f, x.reshape(d.shape), jacobian=False, memory=memory).lam.ravel()
+
+    Jfd = fd_jacobian(lam, d.ravel(), np.full(d.size, 1e-6 * np.max(np.abs(d))))
+    assert np.max(np.abs(J - Jfd)) <= 1e-6 * np.max(np.abs(Jfd))

@@ -1,0 +1,114 @@
+"""Static contact on the real sector: rigid-groove and free-ring oracles, KKT, scaling."""
+import copy
+
+import numpy as np
+import pytest
+
+from ringdamper.studies.mesh_convergence import refined
+from ringdamper.fem.cyclic import cyclic_transform, project
+from ringdamper.fem.elasticity import centrifugal_load
+from ringdamper.fem.linalg import solve
+from ringdamper.fem.model import build_model, node_dofs
+from ringdamper.fem.prestress import rpm_to_rad_s, spin_mass
+from ringdamper.geometry.sector import BODY_RING, build_sector
+from ringdamper.static.stage import solve_static, static_dataset
+
+EXTREMES = [(0, 0, 0), (1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1), (1, -1, -1)]
+
+
+def _model(config, kappa=(0.0, 0.0, 0.0)):
+    return build_model(build_sector(config, kappa), config)
+
+
+def _radial_sums(model, result, speed_rpm):
+    """(sum of N n.e_r over the pairs, integral of rho Omega^2 r over the ring)."""
+    f = centrifugal_load(model.basis, model.material["density"], rpm_to_rad_s(speed_rpm)).reshape(-1, 3)
+    ring = model.node_body == BODY_RING
+    x = model.nodes[ring]
+    body = np.sum(f[ring][:, :2] * x[:, :2] / np.linalg.norm(x[:, :2], axis=1)[:, None])
+    p = model.pairs.position[:, :2]
+    e_r = p / np.linalg.norm(p, axis=1)[:, None]
+    contact = np.sum(result.N0 * np.sum(model.pairs.frame[:, 0, :2] * e_r, axis=1))
+    return contact, body
+
+
+@pytest.mark.parametrize("kappa", [(0, 0, 0), (1, -1, -1), (-1, 1, 1)])
+def test_rigid_groove_carries_the_ring_centrifugal_force(config, kappa):
+    """Exact contact on a rigid groove: the pairs carry the ring's centrifugal force, no gap opens.
+
+    With nu = 0 no hoop force arises, so the balance is local and the oracle exact; with nu = 0.33
+    the radial compression of the ring induces a Poisson hoop compression nu sigma_r whose
+    resultant over the cuts pushes outward: the pairs then carry slightly more (0.1-0.3 %).
+    """
+    config["static"]["method"] = "lagrange"
+    config["material"]["poisson_ratio"] = 0.0
+    model = _model(config, kappa)
+    result, _ = solve_static(model, config, rigid_blisk=True)
+    assert result.status == 0
+    contact, body = _radial_sums(model, result, config["operation"]["speed_rpm"])
+    assert contact == pytest.approx(body, rel=1e-3)
+    assert np.all(result.gap < 1e-15) and np.all(result.in_contact)  # m: round-off of a closed set
+    assert result.complementarity < 1e-10
+
+    config["material"]["poisson_ratio"] = 0.33
+    model = _model(config, kappa)
+    result, _ = solve_static(model, config, rigid_blisk=True)
+    contact, body = _radial_sums(model, result, config["operation"]["speed_rpm"])
+    assert 0.0 < contact / body - 1.0 < 5e-3
+
+
+def test_free_ring_grows_like_a_thin_ring(campaign_config):
+    """Contact removed: radial growth = rho Omega^2 R^3 / E (thin ring) to 2 %, converged in the mesh."""
+    omega = rpm_to_rad_s(campaign_config["operation"]["speed_rpm"])
+    growth = []
+    for factor in (1, 2):
+        cfg = refined(campaign_config, factor)
+        model = _model(cfg)
+        ring = np.flatnonzero(model.node_body == BODY_RING)
+        x = model.nodes[ring]
+        gauge = ring[np.argmin(np.abs(np.arctan2(x[:, 1], x[:, 0])))]  # rotation about Z and axial drift
+        fixed = np.union1d(node_dofs(np.flatnonzero(model.node_body != BODY_RING)), [3 * gauge + 1, 3 * gauge + 2])
+        T, _ = cyclic_transform(model.n_dofs, model.left_nodes, model.right_nodes, fixed,
+                                model.sector_angle, 0.0)
+        K = project(T, model.K - omega**2 * spin_mass(model))
+        u = (T @ solve(K, T.T @ centrifugal_load(model.basis, 4430.0, omega))).reshape(-1, 3)[ring]
+        growth.append(np.mean(np.sum(u[:, :2] * x[:, :2], axis=1) / np.hypot(x[:, 0], x[:, 1])))
+    g = cfg["geometry"]
+    radius = g["disk"]["contact_radius"] - g["ring"]["thickness"] / 2
+    thin_ring = cfg["material"]["density"] * omega**2 * radius**3 / cfg["material"]["young_modulus"]
+    assert growth[0] == pytest.approx(thin_ring, rel=0.02)
+    assert growth[0] == pytest.approx(growth[1], rel=1e-4)
+
+
+@pytest.mark.parametrize("kappa", EXTREMES)
+def test_kkt_and_ring_equilibrium(campaign_config, kappa):
+    model = _model(campaign_config, kappa)
+    result, prob = solve_static(model, campaign_config)
+    assert result.status == 0, result.reason
+    assert np.all(result.N0 >= 0) and np.all(result.gap >= 0)
+    assert np.max(np.abs(result.N0 * result.gap)) <= 1e-12 * result.N0.max()
+    lam = np.column_stack([result.N0, result.tangential]).ravel()
+    residual = prob.K @ result.u + prob.G.T @ lam - prob.f
+    independent_ring = (np.abs(prob.T).T @ np.repeat(model.node_body == BODY_RING, 3).astype(float)) > 0
+    assert np.linalg.norm(residual[independent_ring]) <= 1e-8 * np.linalg.norm(prob.f[independent_ring])
+    ds = static_dataset(model, result, prob, kappa, campaign_config["operation"]["speed_rpm"])
+    assert ds.attrs["status"] == 0 and ds.N0.attrs["units"] == "N"
+
+
+def test_no_speed_no_preload_and_quadratic_growth(campaign_config):
+    model = _model(campaign_config)
+    at_rest, _ = solve_static(model, campaign_config, speed_rpm=0.0)
+    assert at_rest.status == 0 and np.all(at_rest.N0 == 0.0)
+    slow, _ = solve_static(model, campaign_config, speed_rpm=1000.0)
+    fast, _ = solve_static(model, campaign_config, speed_rpm=2000.0)
+    assert np.array_equal(slow.in_contact, fast.in_contact)
+    # N0 ~ Omega^2 while the contact set is fixed (spin softening, ~rho Omega^2 r^2 / E ~ 1e-4, aside)
+    assert fast.N0 == pytest.approx(4.0 * slow.N0, rel=2e-3)
+
+
+def test_absurd_stiffness_is_a_recorded_failure(campaign_config):
+    model = _model(campaign_config)
+    result, prob = solve_static(model, campaign_config, kn=np.nan)
+    assert result.status != 0 and "kn" in result.reason
+    ds = static_dataset(model, result, prob, (0, 0, 0), 2081.0)
+    assert ds.attrs["status"] != 0 and ds.attrs["reason"] == result.reason

@@ -1,0 +1,68 @@
+"""`make studies` on a small setting: every study rule runs on the coarse test configuration with
+small study grids, and its outputs agree with the library and with physics (the calibrated hub
+thickness reaches the operating speed; the mesh study's reference level has zero error and linear bricks are stiffer; more modes
+never make the reduced target frequency worse; the contact calibration's chosen set is the one of
+``contact:``)."""
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+import yaml
+
+REPO = Path(__file__).resolve().parents[2]
+
+SMALL_STUDIES = {
+    "hub_calibration": {"bracket": [0.01, 0.03], "xtol": 1.0e-5},
+    "contact_calibration": {
+        "amplitudes": [2.0e-6, 4.0e-4, 8],
+        "coarse": {"friction_coefficient": [0.3, 0.8], "normal_stiffness_per_area": [1.0e+11],
+                   "kt_over_kn": [0.5]},
+        "refine": {"friction_coefficient": [0.3], "normal_stiffness_per_area": [1.0e+12],
+                   "kt_over_kn": [1.0]},
+        "runner_up": {"friction_coefficient": 0.8, "normal_stiffness_per_area": 1.0e+11, "kt_over_kn": 0.5},
+        "harmonics": [1],
+        "example_curves": [[0.8, 1.0e+11, 0.5]]},
+    "mesh_convergence": {"levels": [[1, 1], [1, 2]]},
+    "reduction_convergence": {"n_fixed_interface_modes": [10, 20], "n_interface_modes": [5, 10],
+                              "band": [0.99, 1.0]},
+}
+
+
+@pytest.mark.slow
+def test_study_rules_run_on_a_small_setting(tmp_path):
+    config = yaml.safe_load((REPO / "tests" / "config_small.yaml").read_text())
+    config["studies"] = SMALL_STUDIES
+    path = tmp_path / "config.yaml"
+    path.write_text(yaml.safe_dump(config))
+    out = tmp_path / "results"
+    run = subprocess.run([sys.executable, "-m", "snakemake", "studies", "--snakefile", str(REPO / "Snakefile"),
+                          "--directory", str(REPO), "--configfile", str(path), "--cores", "2",
+                          "--config", f"results={out}"], capture_output=True, text=True, timeout=1500)
+    assert run.returncode == 0, run.stderr[-3000:]
+    studies = out / "studies"
+
+    hub = yaml.safe_load((studies / "hub_calibration.yaml").read_text())
+    assert 0.01 < hub["hub_thickness_m"] < 0.03
+    assert hub["crossing_speed_rpm"] == pytest.approx(config["operation"]["speed_rpm"], rel=1e-3)
+
+    mesh = pd.read_csv(studies / "mesh_convergence.csv")
+    assert list(zip(mesh.factor, mesh.order)) == [(1, 1), (1, 2)]
+    assert mesh.relative_error.iloc[1] == 0.0                      # the quadratic level is the reference
+    assert mesh.frequency_hz.iloc[0] > mesh.frequency_hz.iloc[1]   # linear bricks lock: too stiff
+
+    red = pd.read_csv(studies / "reduction_convergence.csv")
+    assert len(red) == 4 and (red.target_error >= 0).all()
+    for n_if, rows in red.groupby("n_if"):
+        assert rows.sort_values("n_fi").target_error.is_monotonic_decreasing
+    assert (studies / "reduction_convergence.md").read_text().startswith("| n_fi |")
+
+    cc = studies / "contact_calibration"
+    coarse = pd.read_csv(cc / "coarse.csv")
+    assert len(coarse) == 2 and set(coarse.friction_coefficient) == {0.3, 0.8}
+    chosen = pd.read_csv(cc / "harmonics_A.csv")
+    assert chosen.friction_coefficient.tolist() == [config["contact"]["friction_coefficient"]]
+    assert np.isfinite(chosen.objective).all()
+    assert (cc / "calibration_default_backbone.png").stat().st_size > 0

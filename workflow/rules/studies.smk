@@ -1,0 +1,89 @@
+# The studies that fixed the model's choices (ringdamper.studies): `make studies` -> results/studies/.
+# Settings: the `studies` section of the configuration.
+STUDIES = f"{RESULTS}/studies"
+
+
+rule studies:
+    input:
+        f"{STUDIES}/hub_calibration.yaml",
+        f"{STUDIES}/mesh_convergence.csv",
+        f"{STUDIES}/reduction_convergence.csv",
+        expand(f"{STUDIES}/contact_calibration/{{stage}}.csv",
+               stage=("coarse", "refine", "harmonics_A", "harmonics_B")),
+        f"{STUDIES}/contact_calibration/calibration_default_backbone.png",
+
+
+rule hub_calibration:
+    output:
+        f"{STUDIES}/hub_calibration.yaml",
+    log:
+        f"{RESULTS}/logs/studies/hub_calibration.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/studies/hub_calibration.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/study_hub_calibration.py"
+
+
+rule mesh_convergence:
+    output:
+        f"{STUDIES}/mesh_convergence.csv",
+    log:
+        f"{RESULTS}/logs/studies/mesh_convergence.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/studies/mesh_convergence.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/study_mesh_convergence.py"
+
+
+rule reduction_convergence:
+    output:
+        csv=f"{STUDIES}/reduction_convergence.csv",
+        table=f"{STUDIES}/reduction_convergence.md",
+    log:
+        f"{RESULTS}/logs/studies/reduction_convergence.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/studies/reduction_convergence.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/study_reduction_convergence.py"
+
+
+rule contact_calibration:
+    input:
+        reduced=f"{RESULTS}/geometry/{DEFAULT_GID}/reduced.nc",
+        resonance=f"{RESULTS}/modal/resonance.yaml",
+    output:
+        table=f"{STUDIES}/contact_calibration/{{stage}}.csv",
+        curves=f"{STUDIES}/contact_calibration/{{stage}}.npz",
+    wildcard_constraints:
+        stage="coarse|refine|harmonics_A|harmonics_B",
+    threads: 2
+    log:
+        f"{RESULTS}/logs/studies/contact_calibration_{{stage}}.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/studies/contact_calibration_{{stage}}.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/study_contact_calibration.py"
+
+
+rule contact_calibration_figures:
+    input:
+        expand(f"{STUDIES}/contact_calibration/{{stage}}.npz", stage=("coarse", "refine", "harmonics_A")),
+    output:
+        backbone=report(f"{STUDIES}/contact_calibration/calibration_default_backbone.png",
+                        category="Studies"),
+        examples=report(f"{STUDIES}/contact_calibration/calibration_coarse_examples.png",
+                        category="Studies"),
+    log:
+        f"{RESULTS}/logs/studies/contact_calibration_figures.log",
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/study_contact_figures.py"

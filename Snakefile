@@ -22,6 +22,7 @@ include: "workflow/rules/modal.smk"
 include: "workflow/rules/static.smk"
 include: "workflow/rules/reduction.smk"
 include: "workflow/rules/dnnm.smk"
+include: "workflow/rules/surrogate.smk"
 
 
 rule all:
@@ -31,3 +32,9 @@ rule all:
         f"{RESULTS}/modal/resonance.yaml",
         f"{RESULTS}/figures/static_contact_maps.png",
         f"{RESULTS}/figures/backbones_reference_rings.png",
+        f"{RESULTS}/surrogate/validation.nc",
+        f"{RESULTS}/figures/fig13_predicted_vs_computed.png",
+        f"{RESULTS}/figures/fig13_validation_backbones.png",
+        f"{RESULTS}/figures/fig14_kappa1.png",
+        f"{RESULTS}/surrogate/optimum.yaml",
+        f"{RESULTS}/figures/fig17_envelopes.png",

@@ -1,0 +1,330 @@
+"""Design-space exploration on the Kriging surrogates (paper §3.3): backbones of any geometry kappa,
+their values at given response levels, envelopes over the 50^3 grid and the optimum.
+
+Everything here goes through two functions:
+
+* :func:`backbones` -- the Kriging prediction (mean, standard deviation) of |q_res,z|, omega0, zeta,
+  gamma at every modal amplitude alpha of the campaign, for many geometries at once: the predicted
+  backbone of each geometry is the curve alpha -> (|q_res,z|, omega0, zeta, gamma);
+* :func:`at_levels` -- a backbone read at given values of one of its outputs (the response level
+  |q_res,z| for the envelopes, the OAT maps and the Sobol indices; the forcing gamma for the
+  resonant amplitude of the E-EBM at a forcing level).
+
+Level interpolation: along the alpha grid the level variable x(alpha) is piecewise linear between
+the grid nodes and so are the outputs; at level L the backbone is read on the segment
+[alpha_j, alpha_j+1] whose x-range contains L. |q_res,z|(alpha) of a computed backbone is increasing,
+but a Kriging prediction built amplitude by amplitude need not be: where x(alpha) is not monotone
+several segments may contain L, and the rule is explicit -- ``crossing="first"`` takes the lowest
+alpha (the first time the backbone reaches the level), ``"last"`` the highest (for a forcing level:
+the largest amplitude balancing it, the conservative resonance). Levels the backbone never reaches
+are NaN. :func:`monotone` tells which curves are monotone so callers can report the others.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+from scipy.optimize import minimize
+
+from ..io import variable
+
+
+BACKBONE_OUTPUTS = ("q_res_z", "omega0", "zeta", "gamma")
+
+
+@dataclass
+class Backbones:
+    """Predicted backbones: ``mean[name]`` and ``std[name]`` are (amplitude, point) arrays."""
+
+    amplitude: np.ndarray
+    mean: dict
+    std: dict | None
+
+
+def backbones(surrogate, X, outputs=BACKBONE_OUTPUTS, with_std: bool = True) -> Backbones:
+    """Kriging backbones of the geometries ``X`` (point, 3) from a fitted
+    :class:`~ringdamper.campaign.kriging.KrigingSurrogate` (built once from kriging.nc)."""
+    pred = surrogate.predict(np.atleast_2d(np.asarray(X, dtype=float)), outputs=list(outputs), with_std=with_std)
+    mean = {name: pred[name].values for name in outputs}
+    std = {name: pred[f"{name}_std"].values for name in outputs} if with_std else None
+    return Backbones(amplitude=pred.amplitude.values, mean=mean, std=std)
+
+
+def monotone(x: np.ndarray) -> np.ndarray:
+    """(point,) True where x (amplitude, point) increases strictly along the amplitude axis."""
+    return np.all(np.diff(x, axis=0) > 0, axis=0)
+
+
+def at_levels(x: np.ndarray, y: np.ndarray, levels, crossing: str = "first") -> np.ndarray:
+    """Values of ``y`` (..., amplitude, point) where ``x`` (amplitude, point) equals each of
+    ``levels`` (level,): array (..., level, point), NaN where a curve never reaches a level.
+    Piecewise-linear interpolation in x on the segment chosen by ``crossing`` (module docstring)."""
+    if crossing not in ("first", "last"):
+        raise ValueError(f"crossing = {crossing!r}: choose 'first' or 'last'")
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    levels = np.atleast_1d(np.asarray(levels, float))
+    x0, x1 = x[:-1], x[1:]
+    lo, hi = np.minimum(x0, x1), np.maximum(x0, x1)
+    n_seg = x0.shape[0]
+    out = np.full(y.shape[:-2] + (levels.size, x.shape[-1]), np.nan)
+    for k, level in enumerate(levels):
+        hit = (lo <= level) & (level <= hi)
+        reached = hit.any(axis=0)
+        j = hit.argmax(axis=0) if crossing == "first" else n_seg - 1 - hit[::-1].argmax(axis=0)
+        xa = np.take_along_axis(x0, j[None], 0)[0]
+        xb = np.take_along_axis(x1, j[None], 0)[0]
+        span = xb - xa
+        t = np.divide(level - xa, span, out=np.zeros_like(span), where=span != 0)
+        idx = np.broadcast_to(j, y.shape[:-2] + (1, j.size))
+        ya = np.take_along_axis(y[..., :-1, :], idx, -2)[..., 0, :]
+        yb = np.take_along_axis(y[..., 1:, :], idx, -2)[..., 0, :]
+        out[..., k, :] = np.where(reached, ya + t * (yb - ya), np.nan)
+    return out
+
+
+def cube_grid(n: int, box=((-1.0, 1.0),) * 3) -> np.ndarray:
+    """(n^3, 3) full-factorial grid of ``n`` points per axis on ``box`` (kappa1 varies slowest)."""
+    axes = [np.linspace(lo, hi, n) for lo, hi in box]
+    return np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+
+
+def one_at_a_time(i: int, n: int) -> np.ndarray:
+    """(n, 3) geometries with kappa_i on [-1, 1] and the other two at 0 (paper Figs. 14-16)."""
+    X = np.zeros((n, 3))
+    X[:, i] = np.linspace(-1.0, 1.0, n)
+    return X
+
+
+def zeta_max(bb: Backbones) -> tuple[np.ndarray, np.ndarray]:
+    """Maximum of the predicted damping ratio along each backbone, and the amplitude index where it
+    is reached ((point,) arrays). The maximum of a piecewise-linear backbone lies on a grid node, so
+    it is the maximum over the alpha grid whatever level axis the backbone is later drawn on."""
+    j = np.argmax(bb.mean["zeta"], axis=0)
+    return np.take_along_axis(bb.mean["zeta"], j[None], 0)[0], j
+
+
+def resonant_amplitude(bb: Backbones, gamma: float) -> np.ndarray:
+    """(point,) E-EBM resonant amplitude |q_res,z| at forcing level ``gamma`` (N): the backbone read
+    where gamma(alpha) = gamma, the largest balancing amplitude if several (NaN if never reached)."""
+    return at_levels(bb.mean["gamma"], bb.mean["q_res_z"], [gamma], crossing="last")[0]
+
+
+@dataclass
+class GridExploration:
+    """Result of :func:`explore_grid`: envelopes (output -> (level,) min and max) on the common
+    |q_res,z| axis ``levels``, and per grid point zeta_max and the resonant amplitude at the forcing
+    level; ``n_non_monotone`` counts the predicted |q_res,z|(alpha) curves that are not increasing."""
+
+    X: np.ndarray
+    levels: np.ndarray
+    lower: dict
+    upper: dict
+    zeta_max: np.ndarray
+    q_at_forcing: np.ndarray
+    n_non_monotone: int
+
+
+ENVELOPE_OUTPUTS = ("omega0", "zeta", "gamma")
+
+
+def explore_grid(surrogate, X, levels, forcing: float, chunk: int = 20000) -> GridExploration:
+    """Predict the backbones of the geometries ``X`` chunk by chunk; keep the envelopes of omega0,
+    zeta, gamma against |q_res,z| on ``levels`` (paper Fig. 17), zeta_max and the resonant amplitude
+    at ``forcing`` of every geometry."""
+    lower = {k: np.full(len(levels), np.inf) for k in ENVELOPE_OUTPUTS}
+    upper = {k: np.full(len(levels), -np.inf) for k in ENVELOPE_OUTPUTS}
+    zmax, q_f, n_bad = np.empty(len(X)), np.empty(len(X)), 0
+    for s in range(0, len(X), chunk):
+        bb = backbones(surrogate, X[s:s + chunk], with_std=False)
+        q = bb.mean["q_res_z"]
+        n_bad += int((~monotone(q)).sum())
+        values = at_levels(q, np.stack([bb.mean[k] for k in ENVELOPE_OUTPUTS]), levels)
+        for k, name in enumerate(ENVELOPE_OUTPUTS):
+            lower[name] = np.fmin(lower[name], np.nanmin(values[k], axis=-1, initial=np.inf))
+            upper[name] = np.fmax(upper[name], np.nanmax(values[k], axis=-1, initial=-np.inf))
+        zmax[s:s + chunk] = zeta_max(bb)[0]
+        q_f[s:s + chunk] = resonant_amplitude(bb, forcing)
+    for name in ENVELOPE_OUTPUTS:
+        lower[name][~np.isfinite(lower[name])] = np.nan
+        upper[name][~np.isfinite(upper[name])] = np.nan
+    return GridExploration(X=X, levels=np.asarray(levels), lower=lower, upper=upper, zeta_max=zmax,
+                           q_at_forcing=q_f, n_non_monotone=n_bad)
+
+
+def polish(objective, x0, h: float, box=((-1.0, 1.0),) * 3) -> tuple[np.ndarray, float]:
+    """Bounded Nelder-Mead minimisation of ``objective(kappa)`` from the grid node ``x0`` with a start
+    simplex of the grid step ``h``; returns (kappa, value), never worse than ``x0``."""
+    lo, hi = np.array(box).T
+    steps = np.where(x0 + h <= hi, h, -h)
+    simplex = np.vstack([x0] + [x0 + np.eye(3)[k] * steps[k] for k in range(3)])
+    res = minimize(objective, x0, method="Nelder-Mead", bounds=list(zip(lo, hi)),
+                   options={"xatol": 1e-4, "fatol": 1e-10, "initial_simplex": simplex})
+    f0 = float(objective(x0))
+    return (np.clip(res.x, lo, hi), float(res.fun)) if res.fun < f0 else (np.asarray(x0), f0)
+
+
+def _point(bb: Backbones, j: int) -> dict:
+    """Predicted outputs (mean, std) of a single-geometry backbone at amplitude index ``j``."""
+    out = {"amplitude": float(bb.amplitude[j])}
+    for name in BACKBONE_OUTPUTS:
+        out[name] = float(bb.mean[name][j, 0])
+        if bb.std is not None:
+            out[f"{name}_std"] = float(bb.std[name][j, 0])
+    return out
+
+
+def summary(surrogate, kappa, forcing: float) -> dict:
+    """Predicted design figures of geometry ``kappa``: zeta_max and the backbone point where it is
+    reached, the linearised (smallest-amplitude) omega0 and the resonant amplitude at ``forcing``."""
+    bb = backbones(surrogate, np.asarray(kappa, float)[None])
+    z, j = zeta_max(bb)
+    return {"zeta_max": _point(bb, int(j[0])), "omega0_stuck": float(bb.mean["omega0"][0, 0]),
+            "q_res_z_at_forcing": float(resonant_amplitude(bb, forcing)[0])}
+
+
+def find_optimum(surrogate, grid: GridExploration, forcing: float, n_grid: int) -> dict:
+    """The two optima of the explored grid, each polished off its best node (:func:`polish`):
+    maximum zeta_max (the paper's criterion) and minimum resonant amplitude at ``forcing``."""
+    h = 2.0 / (n_grid - 1)
+
+    def neg_zeta_max(k):
+        return -zeta_max(backbones(surrogate, k[None], ("zeta",), with_std=False))[0][0]
+
+    def q_forced(k):
+        q = resonant_amplitude(backbones(surrogate, k[None], ("q_res_z", "gamma"), with_std=False), forcing)[0]
+        return q if np.isfinite(q) else np.inf
+
+    i = int(np.argmax(grid.zeta_max))
+    k_zeta, _ = polish(neg_zeta_max, grid.X[i], h)
+    i_q = int(np.nanargmin(np.where(np.isfinite(grid.q_at_forcing), grid.q_at_forcing, np.inf)))
+    k_q, q_min = polish(q_forced, grid.X[i_q], h)
+    return {"kappa": k_zeta, "grid_kappa": grid.X[i], "grid_zeta_max": float(grid.zeta_max[i]),
+            "kappa_min_q": k_q, "grid_kappa_min_q": grid.X[i_q], "q_min": q_min}
+
+
+def level_function(surrogate, levels, outputs=ENVELOPE_OUTPUTS):
+    """f(X (n, 3)) -> (n, len(outputs) * len(levels)) array: the predicted backbone of each geometry
+    read at the |q_res,z| ``levels`` (column o * len(levels) + l for output o, level l); the model
+    of the Sobol studies. A level some geometry never reaches raises ValueError naming it."""
+    levels = np.asarray(levels, dtype=float)
+
+    def f(X):
+        bb = backbones(surrogate, X, ("q_res_z",) + tuple(outputs), with_std=False)
+        q = bb.mean["q_res_z"]
+        values = at_levels(q, np.stack([bb.mean[k] for k in outputs]), levels)
+        missed = np.isnan(values).any(axis=(0, 2))
+        if missed.any():
+            raise ValueError(
+                f"|q_res,z| level(s) {levels[missed].tolist()} m not reached by the predicted backbone of "
+                f"{int(np.isnan(values[0]).any(axis=0).sum())} of {len(X)} geometries (predicted |q_res,z| "
+                f"spans {np.nanmin(q):.3g} ... {np.nanmin(q[-1]):.3g} m at the extreme amplitudes): lower "
+                "sensitivity.levels or raise dnnm.amplitude_max")
+        return values.reshape(-1, len(X)).T
+
+    return f
+
+
+def response_axis(dataset, mask, n: int) -> np.ndarray:
+    """Common |q_res,z| axis (m): ``n`` points spanning the usable computed training backbones."""
+    q = dataset.q_res_z.where(mask & (dataset.split == "training")).values
+    return np.linspace(np.nanmin(q), np.nanmax(q), n)
+
+
+def sweeps(surrogate, n: int, levels) -> xr.Dataset:
+    """oat.nc: the predicted backbones (mean, std) of the one-at-a-time sweeps [kappa_i, others 0],
+    kappa_i on n values of [-1, 1], and omega0, zeta, gamma read at the |q_res,z| ``levels``."""
+    data = {}
+    per = {f"{name}_{kind}": [] for name in BACKBONE_OUTPUTS for kind in ("mean", "std")}
+    at = {name: [] for name in ENVELOPE_OUTPUTS}
+    for i in range(3):
+        bb = backbones(surrogate, one_at_a_time(i, n))
+        for name in BACKBONE_OUTPUTS:
+            per[f"{name}_mean"].append(bb.mean[name].T)
+            per[f"{name}_std"].append(bb.std[name].T)
+        values = at_levels(bb.mean["q_res_z"], np.stack([bb.mean[k] for k in ENVELOPE_OUTPUTS]), levels)
+        for k, name in enumerate(ENVELOPE_OUTPUTS):
+            at[name].append(values[k].T)
+    dims = ("parameter", "sample", "amplitude")
+    for name in BACKBONE_OUTPUTS:
+        data[f"{name}_mean"] = variable(dims, per[f"{name}_mean"], surrogate.units[name], f"Kriging mean of {name}")
+        data[f"{name}_std"] = variable(dims, per[f"{name}_std"], surrogate.units[name], f"Kriging standard deviation of {name}")
+    for name in ENVELOPE_OUTPUTS:
+        data[f"{name}_at_level"] = variable(("parameter", "sample", "level"), at[name], surrogate.units[name],
+                                            f"Kriging mean of {name} at |q_res,z| (NaN: not reached)")
+    coords = {"parameter": variable("parameter", np.array(["kappa1", "kappa2", "kappa3"], dtype=object), "1",
+                                    "swept shape parameter (the other two are 0)"),
+              "value": variable("sample", np.linspace(-1.0, 1.0, n), "1", "value of the swept parameter"),
+              "amplitude": variable("amplitude", bb.amplitude, "kg0.5 m", "modal amplitude alpha"),
+              "level": variable("level", np.asarray(levels), "m", "response level |q_res,z|")}
+    return xr.Dataset(data, coords=coords)
+
+
+def grid_dataset(surrogate, grid: GridExploration, optimum: dict, n_grid: int) -> xr.Dataset:
+    """grid.nc: envelopes of Fig. 17, the predicted default and optimum backbones on the same
+    |q_res,z| axis, and zeta_max and the resonant amplitude at the forcing level over the grid."""
+    special = backbones(surrogate, np.vstack([np.zeros(3), optimum["kappa"]]), with_std=False)
+    at = at_levels(special.mean["q_res_z"], np.stack([special.mean[k] for k in ENVELOPE_OUTPUTS]), grid.levels)
+    data = {}
+    for k, name in enumerate(ENVELOPE_OUTPUTS):
+        u = surrogate.units[name]
+        data[f"{name}_lower"] = variable("level", grid.lower[name], u, f"smallest predicted {name} over the grid")
+        data[f"{name}_upper"] = variable("level", grid.upper[name], u, f"largest predicted {name} over the grid")
+        data[f"{name}_default"] = variable("level", at[k, :, 0], u, f"predicted {name} of the default ring")
+        data[f"{name}_optimum"] = variable("level", at[k, :, 1], u, f"predicted {name} of the optimum")
+    cube = ("k1", "k2", "k3")
+    data["zeta_max"] = variable(cube, grid.zeta_max.reshape((n_grid,) * 3), "1",
+                                "maximum of the predicted damping ratio along the backbone")
+    data["q_res_z_at_forcing"] = variable(cube, grid.q_at_forcing.reshape((n_grid,) * 3), "m",
+                                          "predicted E-EBM resonant amplitude at the forcing level")
+    axis = np.linspace(-1.0, 1.0, n_grid)
+    coords = {"level": variable("level", grid.levels, "m", "response level |q_res,z|"),
+              **{c: variable(c, axis, "1", f"grid value of kappa{i + 1}") for i, c in enumerate(cube)}}
+    attrs = {"optimum_kappa": np.asarray(optimum["kappa"], float), "n_geometries": len(grid.X),
+             "n_non_monotone": grid.n_non_monotone}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def forcing_of(surrogate, kappa, level: float) -> float:
+    """Forcing gamma (N) at which the predicted backbone of ``kappa`` reaches |q_res,z| = ``level``."""
+    bb = backbones(surrogate, np.asarray(kappa, float)[None], ("q_res_z", "gamma"), with_std=False)
+    gamma = float(at_levels(bb.mean["q_res_z"], bb.mean["gamma"], [level])[0, 0])
+    if not np.isfinite(gamma):
+        raise ValueError(f"exploration.reference_amplitude = {level} m is not reached by the predicted "
+                         f"backbone of kappa = {list(kappa)} (|q_res,z| up to {bb.mean['q_res_z'].max():.3g} m)")
+    return gamma
+
+
+CRITERION = ("maximum over the design space of zeta_max(kappa), the largest Kriging-predicted modal "
+             "damping ratio along the geometry's backbone (the paper's criterion, §3.3.2): the best damping "
+             "the ring offers, wherever it is reached; best node of the grid, polished by bounded Nelder-Mead")
+
+
+def _floats(a) -> list:
+    return [round(float(v), 6) for v in a]
+
+
+def optimum_record(surrogate, grid: GridExploration, optimum: dict, forcing: float, cfg: dict) -> dict:
+    """Content of optimum.yaml: the optimum kappa, the criterion, the predicted figures there and at
+    the default ring, and the second view (minimum resonant amplitude at a forcing level)."""
+    at_opt, at_default = summary(surrogate, optimum["kappa"], forcing), summary(surrogate, np.zeros(3), forcing)
+    at_q_opt = summary(surrogate, optimum["kappa_min_q"], forcing)
+    return {
+        "kappa": _floats(optimum["kappa"]),
+        "criterion": CRITERION,
+        "predicted": at_opt,
+        "default_predicted": at_default,
+        "grid": {"points_per_axis": int(cfg["grid_points"]), "best_node": _floats(optimum["grid_kappa"]),
+                 "best_node_zeta_max": float(optimum["grid_zeta_max"]),
+                 "non_monotone_backbones": int(grid.n_non_monotone)},
+        "forcing_view": {
+            "criterion": ("minimum predicted E-EBM resonant amplitude |q_res,z| at the forcing level that "
+                          f"drives the default ring to {cfg['reference_amplitude']} m (the Table 3 view)"),
+            "forcing_level": float(forcing),
+            "kappa": _floats(optimum["kappa_min_q"]),
+            "q_res_z": float(optimum["q_min"]),
+            "zeta_max": at_q_opt["zeta_max"]["zeta"],
+            "q_res_z_of_zeta_optimum": at_opt["q_res_z_at_forcing"],
+            "q_res_z_default": at_default["q_res_z_at_forcing"],
+        },
+    }

@@ -1,0 +1,20 @@
+"""Axis labels and display scales of the dNNM outputs, shared by the campaign figures."""
+from __future__ import annotations
+
+# name -> (axis label, factor from SI to the displayed unit)
+OUTPUTS = {
+    "q_res_z": (r"$|q_{res,z}|$ (mm)", 1e3),
+    "omega0": (r"$\omega_0$", 1.0),
+    "zeta": (r"$\zeta$ (%)", 100.0),
+    "gamma": (r"$\gamma$ (N)", 1.0),
+}
+# the paper's colours of Figs. 18 and 20
+COLOURS = {"omega0": "tab:orange", "zeta": "tab:blue", "gamma": "tab:green"}
+
+
+def label(name: str) -> str:
+    return OUTPUTS[name][0]
+
+
+def scale(name: str) -> float:
+    return OUTPUTS[name][1]

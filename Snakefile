@@ -23,6 +23,7 @@ include: "workflow/rules/static.smk"
 include: "workflow/rules/reduction.smk"
 include: "workflow/rules/dnnm.smk"
 include: "workflow/rules/surrogate.smk"
+include: "workflow/rules/sensitivity.smk"
 
 
 rule all:
@@ -38,3 +39,5 @@ rule all:
         f"{RESULTS}/figures/fig14_kappa1.png",
         f"{RESULTS}/surrogate/optimum.yaml",
         f"{RESULTS}/figures/fig17_envelopes.png",
+        f"{RESULTS}/sensitivity/sobol_global.nc",
+        f"{RESULTS}/figures/fig18_sobol_global.png",

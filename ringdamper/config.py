@@ -8,6 +8,7 @@ overhang, the blade root must lie above the groove, ...). Every failure is one
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 
@@ -136,6 +137,11 @@ def _analytics_errors(config: dict) -> list[str]:
     levels = config["sensitivity"]["levels"]
     if any(b <= a for a, b in zip(levels, levels[1:])):
         errors.append(f"sensitivity.levels = {levels} must be strictly increasing")
+    degree, n_pce = config["sensitivity"]["pce_degree"], config["sensitivity"]["pce_samples"]
+    basis = math.comb(degree + 3, 3)  # polynomials of total degree <= p in the 3 shape parameters
+    if n_pce < basis:
+        errors.append(f"sensitivity.pce_samples = {n_pce} must be at least the {basis} polynomials of "
+                      f"degree <= sensitivity.pce_degree = {degree}")
     return errors
 
 

@@ -176,10 +176,12 @@ def _point(bb: Backbones, j: int) -> dict:
 
 def summary(surrogate, kappa, forcing: float) -> dict:
     """Predicted design figures of geometry ``kappa``: zeta_max and the backbone point where it is
-    reached, the linearised (smallest-amplitude) omega0 and the resonant amplitude at ``forcing``."""
+    reached (flagged if at the last amplitude: the true maximum may lie beyond the grid), the
+    linearised (smallest-amplitude) omega0 and the resonant amplitude at ``forcing``."""
     bb = backbones(surrogate, np.asarray(kappa, float)[None])
-    z, j = zeta_max(bb)
-    return {"zeta_max": _point(bb, int(j[0])), "omega0_stuck": float(bb.mean["omega0"][0, 0]),
+    j = int(zeta_max(bb)[1][0])
+    return {"zeta_max": _point(bb, j), "zeta_max_at_last_amplitude": j == bb.amplitude.size - 1,
+            "omega0_stuck": float(bb.mean["omega0"][0, 0]),
             "q_res_z_at_forcing": float(resonant_amplitude(bb, forcing)[0])}
 
 

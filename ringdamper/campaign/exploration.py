@@ -164,25 +164,22 @@ def polish(objective, x0, h: float, box=((-1.0, 1.0),) * 3) -> tuple[np.ndarray,
     return (np.clip(res.x, lo, hi), float(res.fun)) if res.fun < f0 else (np.asarray(x0), f0)
 
 
-def _point(bb: Backbones, j: int) -> dict:
-    """Predicted outputs (mean, std) of a single-geometry backbone at amplitude index ``j``."""
-    out = {"amplitude": float(bb.amplitude[j])}
-    for name in BACKBONE_OUTPUTS:
-        out[name] = float(bb.mean[name][j, 0])
-        if bb.std is not None:
-            out[f"{name}_std"] = float(bb.std[name][j, 0])
-    return out
-
-
 def summary(surrogate, kappa, forcing: float) -> dict:
-    """Predicted design figures of geometry ``kappa``: zeta_max and the backbone point where it is
-    reached (flagged if at the last amplitude: the true maximum may lie beyond the grid), the
-    linearised (smallest-amplitude) omega0 and the resonant amplitude at ``forcing``."""
+    """Predicted design figures of geometry ``kappa`` (flat, SI): zeta_max (with its sigma) and the
+    backbone point where it is reached (flagged if at the last amplitude: the true maximum may lie
+    beyond the grid), the linearised (smallest-amplitude) omega0 and the resonant amplitude at
+    ``forcing``."""
     bb = backbones(surrogate, np.asarray(kappa, float)[None])
     j = int(zeta_max(bb)[1][0])
-    return {"zeta_max": _point(bb, j), "zeta_max_at_last_amplitude": j == bb.amplitude.size - 1,
-            "omega0_stuck": float(bb.mean["omega0"][0, 0]),
-            "q_res_z_at_forcing": float(resonant_amplitude(bb, forcing)[0])}
+    out = {"zeta_max": float(bb.mean["zeta"][j, 0]), "zeta_max_std": float(bb.std["zeta"][j, 0]),
+           "zeta_max_at_last_amplitude": j == bb.amplitude.size - 1,
+           "amplitude_at_zeta_max": float(bb.amplitude[j])}
+    for name in ("q_res_z", "omega0", "gamma"):
+        out[f"{name}_at_zeta_max"] = float(bb.mean[name][j, 0])
+        out[f"{name}_at_zeta_max_std"] = float(bb.std[name][j, 0])
+    out["omega0_stuck"] = float(bb.mean["omega0"][0, 0])
+    out["q_res_z_at_forcing"] = float(resonant_amplitude(bb, forcing)[0])
+    return out
 
 
 def find_optimum(surrogate, grid: GridExploration, forcing: float, n_grid: int) -> dict:
@@ -325,7 +322,7 @@ def optimum_record(surrogate, grid: GridExploration, optimum: dict, forcing: flo
             "forcing_level": float(forcing),
             "kappa": _floats(optimum["kappa_min_q"]),
             "q_res_z": float(optimum["q_min"]),
-            "zeta_max": at_q_opt["zeta_max"]["zeta"],
+            "zeta_max": at_q_opt["zeta_max"],
             "q_res_z_of_zeta_optimum": at_opt["q_res_z_at_forcing"],
             "q_res_z_default": at_default["q_res_z_at_forcing"],
         },

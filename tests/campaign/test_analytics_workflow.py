@@ -58,7 +58,8 @@ def test_analytics_rules_on_a_synthetic_campaign(tmp_path, small_config):
     optimum = yaml.safe_load((out / "surrogate" / "optimum.yaml").read_text())
     assert len(optimum["kappa"]) == 3 and all(-1 <= v <= 1 for v in optimum["kappa"])
     assert isinstance(optimum["criterion"], str)
-    assert optimum["predicted"]["zeta_max"]["zeta"] >= optimum["default_predicted"]["zeta_max"]["zeta"]
+    assert optimum["predicted"]["zeta_max"] >= optimum["default_predicted"]["zeta_max"]
+    assert optimum["predicted"]["q_res_z_at_zeta_max"] > 0
 
     grid = read_netcdf(out / "surrogate" / "grid.nc")
     check_contract(grid)

@@ -67,7 +67,7 @@ def at_levels(x: np.ndarray, y: np.ndarray, levels, crossing: str = "first") -> 
     x0, x1 = x[:-1], x[1:]
     lo, hi = np.minimum(x0, x1), np.maximum(x0, x1)
     n_seg = x0.shape[0]
-    out = np.full(y.shape[:-2] + (levels.size, x.shape[-1]), np.nan)
+    out = np.empty(y.shape[:-2] + (levels.size, x.shape[-1]))  # every level is written below
     for k, level in enumerate(levels):
         hit = (lo <= level) & (level <= hi)
         reached = hit.any(axis=0)

@@ -96,12 +96,13 @@ def one_at_a_time(i: int, n: int) -> np.ndarray:
     return X
 
 
-def zeta_max(bb: Backbones) -> tuple[np.ndarray, np.ndarray]:
-    """Maximum of the predicted damping ratio along each backbone, and the amplitude index where it
-    is reached ((point,) arrays). The maximum of a piecewise-linear backbone lies on a grid node, so
-    it is the maximum over the alpha grid whatever level axis the backbone is later drawn on."""
-    j = np.argmax(bb.mean["zeta"], axis=0)
-    return np.take_along_axis(bb.mean["zeta"], j[None], 0)[0], j
+def zeta_max(bb: Backbones, q_max: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
+    """Maximum of the predicted damping ratio along each backbone where |q_res,z| <= ``q_max``, and
+    the amplitude index where it is reached ((point,) arrays). The maximum of a piecewise-linear
+    backbone lies on a grid node, so it is the maximum over the alpha nodes in that range."""
+    z = bb.mean["zeta"] if np.isinf(q_max) else np.where(bb.mean["q_res_z"] <= q_max, bb.mean["zeta"], -np.inf)
+    j = np.argmax(z, axis=0)
+    return np.take_along_axis(z, j[None], 0)[0], j
 
 
 def resonant_amplitude(bb: Backbones, gamma: float) -> np.ndarray:
@@ -113,14 +114,16 @@ def resonant_amplitude(bb: Backbones, gamma: float) -> np.ndarray:
 @dataclass
 class GridExploration:
     """Result of :func:`explore_grid`: envelopes (output -> (level,) min and max) on the common
-    |q_res,z| axis ``levels``, and per grid point zeta_max and the resonant amplitude at the forcing
-    level; ``n_non_monotone`` counts the predicted |q_res,z|(alpha) curves that are not increasing."""
+    |q_res,z| axis ``levels``, and per grid point zeta_max (up to the optimum's response level, and
+    over the whole backbone) and the resonant amplitude at the forcing level; ``n_non_monotone``
+    counts the predicted |q_res,z|(alpha) curves that are not increasing."""
 
     X: np.ndarray
     levels: np.ndarray
     lower: dict
     upper: dict
     zeta_max: np.ndarray
+    zeta_max_full: np.ndarray
     q_at_forcing: np.ndarray
     n_non_monotone: int
 
@@ -128,13 +131,14 @@ class GridExploration:
 ENVELOPE_OUTPUTS = ("omega0", "zeta", "gamma")
 
 
-def explore_grid(surrogate, X, levels, forcing: float, chunk: int = 20000) -> GridExploration:
+def explore_grid(surrogate, X, levels, forcing: float, q_max: float = np.inf,
+                 chunk: int = 20000) -> GridExploration:
     """Predict the backbones of the geometries ``X`` chunk by chunk; keep the envelopes of omega0,
-    zeta, gamma against |q_res,z| on ``levels`` (paper Fig. 17), zeta_max and the resonant amplitude
-    at ``forcing`` of every geometry."""
+    zeta, gamma against |q_res,z| on ``levels`` (paper Fig. 17), zeta_max (for |q_res,z| <= ``q_max``
+    and over the whole backbone) and the resonant amplitude at ``forcing`` of every geometry."""
     lower = {k: np.full(len(levels), np.inf) for k in ENVELOPE_OUTPUTS}
     upper = {k: np.full(len(levels), -np.inf) for k in ENVELOPE_OUTPUTS}
-    zmax, q_f, n_bad = np.empty(len(X)), np.empty(len(X)), 0
+    zmax, zfull, q_f, n_bad = np.empty(len(X)), np.empty(len(X)), np.empty(len(X)), 0
     for s in range(0, len(X), chunk):
         bb = backbones(surrogate, X[s:s + chunk], with_std=False)
         q = bb.mean["q_res_z"]
@@ -143,13 +147,14 @@ def explore_grid(surrogate, X, levels, forcing: float, chunk: int = 20000) -> Gr
         for k, name in enumerate(ENVELOPE_OUTPUTS):
             lower[name] = np.fmin(lower[name], np.nanmin(values[k], axis=-1, initial=np.inf))
             upper[name] = np.fmax(upper[name], np.nanmax(values[k], axis=-1, initial=-np.inf))
-        zmax[s:s + chunk] = zeta_max(bb)[0]
+        zmax[s:s + chunk] = zeta_max(bb, q_max)[0]
+        zfull[s:s + chunk] = zeta_max(bb)[0]
         q_f[s:s + chunk] = resonant_amplitude(bb, forcing)
     for name in ENVELOPE_OUTPUTS:
         lower[name][~np.isfinite(lower[name])] = np.nan
         upper[name][~np.isfinite(upper[name])] = np.nan
     return GridExploration(X=X, levels=np.asarray(levels), lower=lower, upper=upper, zeta_max=zmax,
-                           q_at_forcing=q_f, n_non_monotone=n_bad)
+                           zeta_max_full=zfull, q_at_forcing=q_f, n_non_monotone=n_bad)
 
 
 def polish(objective, x0, h: float, box=((-1.0, 1.0),) * 3) -> tuple[np.ndarray, float]:
@@ -164,13 +169,13 @@ def polish(objective, x0, h: float, box=((-1.0, 1.0),) * 3) -> tuple[np.ndarray,
     return (np.clip(res.x, lo, hi), float(res.fun)) if res.fun < f0 else (np.asarray(x0), f0)
 
 
-def summary(surrogate, kappa, forcing: float) -> dict:
-    """Predicted design figures of geometry ``kappa`` (flat, SI): zeta_max (with its sigma) and the
-    backbone point where it is reached (flagged if at the last amplitude: the true maximum may lie
-    beyond the grid), the linearised (smallest-amplitude) omega0 and the resonant amplitude at
-    ``forcing``."""
+def summary(surrogate, kappa, forcing: float, q_max: float = np.inf) -> dict:
+    """Predicted design figures of geometry ``kappa`` (flat, SI): zeta_max for |q_res,z| <= ``q_max``
+    (with its sigma) and the backbone point where it is reached (flagged if at the last amplitude: the
+    true maximum may lie beyond the grid), the linearised (smallest-amplitude) omega0 and the
+    resonant amplitude at ``forcing``."""
     bb = backbones(surrogate, np.asarray(kappa, float)[None])
-    j = int(zeta_max(bb)[1][0])
+    j = int(zeta_max(bb, q_max)[1][0])
     out = {"zeta_max": float(bb.mean["zeta"][j, 0]), "zeta_max_std": float(bb.std["zeta"][j, 0]),
            "zeta_max_at_last_amplitude": j == bb.amplitude.size - 1,
            "amplitude_at_zeta_max": float(bb.amplitude[j])}
@@ -182,13 +187,14 @@ def summary(surrogate, kappa, forcing: float) -> dict:
     return out
 
 
-def find_optimum(surrogate, grid: GridExploration, forcing: float, n_grid: int) -> dict:
-    """The two optima of the explored grid, each polished off its best node (:func:`polish`):
-    maximum zeta_max (the paper's criterion) and minimum resonant amplitude at ``forcing``."""
+def find_optimum(surrogate, grid: GridExploration, forcing: float, n_grid: int, q_max: float = np.inf) -> dict:
+    """The optima of the explored grid, each polished off its best node (:func:`polish`): maximum
+    zeta_max up to |q_res,z| = ``q_max`` (the criterion), maximum zeta_max over the whole backbone (for
+    the record) and minimum resonant amplitude at ``forcing``."""
     h = 2.0 / (n_grid - 1)
 
-    def neg_zeta_max(k):
-        return -zeta_max(backbones(surrogate, k[None], ("zeta",), with_std=False))[0][0]
+    def neg_zeta_max(k, limit=q_max):
+        return -zeta_max(backbones(surrogate, k[None], ("q_res_z", "zeta"), with_std=False), limit)[0][0]
 
     def q_forced(k):
         q = resonant_amplitude(backbones(surrogate, k[None], ("q_res_z", "gamma"), with_std=False), forcing)[0]
@@ -196,9 +202,12 @@ def find_optimum(surrogate, grid: GridExploration, forcing: float, n_grid: int) 
 
     i = int(np.argmax(grid.zeta_max))
     k_zeta, _ = polish(neg_zeta_max, grid.X[i], h)
+    i_full = int(np.argmax(grid.zeta_max_full))
+    k_full, _ = polish(lambda k: neg_zeta_max(k, np.inf), grid.X[i_full], h)
     i_q = int(np.nanargmin(np.where(np.isfinite(grid.q_at_forcing), grid.q_at_forcing, np.inf)))
     k_q, q_min = polish(q_forced, grid.X[i_q], h)
     return {"kappa": k_zeta, "grid_kappa": grid.X[i], "grid_zeta_max": float(grid.zeta_max[i]),
+            "kappa_full": k_full,
             "kappa_min_q": k_q, "grid_kappa_min_q": grid.X[i_q], "q_min": q_min}
 
 
@@ -273,7 +282,10 @@ def grid_dataset(surrogate, grid: GridExploration, optimum: dict, n_grid: int) -
         data[f"{name}_optimum"] = variable("level", at[k, :, 1], u, f"predicted {name} of the optimum")
     cube = ("k1", "k2", "k3")
     data["zeta_max"] = variable(cube, grid.zeta_max.reshape((n_grid,) * 3), "1",
-                                "maximum of the predicted damping ratio along the backbone")
+                                "maximum of the predicted damping ratio along the backbone up to "
+                                "exploration.optimum_max_level")
+    data["zeta_max_whole_backbone"] = variable(cube, grid.zeta_max_full.reshape((n_grid,) * 3), "1",
+                                               "maximum of the predicted damping ratio along the whole backbone")
     data["q_res_z_at_forcing"] = variable(cube, grid.q_at_forcing.reshape((n_grid,) * 3), "m",
                                           "predicted E-EBM resonant amplitude at the forcing level")
     axis = np.linspace(-1.0, 1.0, n_grid)
@@ -294,9 +306,12 @@ def forcing_of(surrogate, kappa, level: float) -> float:
     return gamma
 
 
-CRITERION = ("maximum over the design space of zeta_max(kappa), the largest Kriging-predicted modal "
-             "damping ratio along the geometry's backbone (the paper's criterion, §3.3.2): the best damping "
-             "the ring offers, wherever it is reached; best node of the grid, polished by bounded Nelder-Mead")
+def criterion(q_max: float) -> str:
+    """The optimum's criterion in words (docs/analytics.md says why)."""
+    return (f"maximum over the design space of zeta_max(kappa), the largest Kriging-predicted modal damping "
+            f"ratio along the geometry's backbone up to |q_res,z| = {q_max:g} m (exploration.optimum_max_level), "
+            "the paper's criterion (§3.3.2) on the response range of interest; best node of the grid, "
+            "polished by bounded Nelder-Mead")
 
 
 def _floats(a) -> list:
@@ -306,13 +321,20 @@ def _floats(a) -> list:
 def optimum_record(surrogate, grid: GridExploration, optimum: dict, forcing: float, cfg: dict) -> dict:
     """Content of optimum.yaml: the optimum kappa, the criterion, the predicted figures there and at
     the default ring, and the second view (minimum resonant amplitude at a forcing level)."""
-    at_opt, at_default = summary(surrogate, optimum["kappa"], forcing), summary(surrogate, np.zeros(3), forcing)
-    at_q_opt = summary(surrogate, optimum["kappa_min_q"], forcing)
+    q_max = cfg["optimum_max_level"]
+    at_opt = summary(surrogate, optimum["kappa"], forcing, q_max)
+    at_default = summary(surrogate, np.zeros(3), forcing, q_max)
+    at_q_opt = summary(surrogate, optimum["kappa_min_q"], forcing, q_max)
+    at_full = summary(surrogate, optimum["kappa_full"], forcing)
     return {
         "kappa": _floats(optimum["kappa"]),
-        "criterion": CRITERION,
+        "criterion": criterion(q_max),
         "predicted": at_opt,
         "default_predicted": at_default,
+        "whole_backbone": {"kappa": _floats(optimum["kappa_full"]), "zeta_max": at_full["zeta_max"],
+                           "zeta_max_std": at_full["zeta_max_std"],
+                           "q_res_z_at_zeta_max": at_full["q_res_z_at_zeta_max"],
+                           "zeta_max_at_last_amplitude": at_full["zeta_max_at_last_amplitude"]},
         "grid": {"points_per_axis": int(cfg["grid_points"]), "best_node": _floats(optimum["grid_kappa"]),
                  "best_node_zeta_max": float(optimum["grid_zeta_max"]),
                  "non_monotone_backbones": int(grid.n_non_monotone)},

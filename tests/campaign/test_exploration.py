@@ -3,7 +3,7 @@ non-monotone predicted curves, and the grids of the exploration."""
 import numpy as np
 import pytest
 
-from ringdamper.campaign.exploration import at_levels, cube_grid, monotone, one_at_a_time
+from ringdamper.campaign.exploration import Backbones, at_levels, cube_grid, monotone, one_at_a_time, zeta_max
 
 ALPHA = np.geomspace(1e-6, 3e-4, 30)
 
@@ -62,3 +62,14 @@ def test_grids():
     assert box[:, 0].min() == 0.9 and box[:, 1].max() == -0.9
     s = one_at_a_time(1, 5)
     assert s[:, 1].tolist() == [-1.0, -0.5, 0.0, 0.5, 1.0] and not s[:, [0, 2]].any()
+
+
+def test_zeta_max_up_to_a_response_level():
+    """Two backbones whose damping peaks again at the top: the limit keeps the first peak."""
+    q = np.array([1.0, 2.0, 3.0, 4.0])[:, None] * [1.0, 1.0]
+    zeta = np.array([[0.1, 0.3, 0.2, 0.5], [0.1, 0.2, 0.4, 0.3]]).T
+    bb = Backbones(amplitude=np.arange(4.0), mean={"q_res_z": q, "zeta": zeta}, std=None)
+    value, j = zeta_max(bb)
+    assert value.tolist() == [0.5, 0.4] and j.tolist() == [3, 2]
+    value, j = zeta_max(bb, q_max=3.0)
+    assert value.tolist() == [0.3, 0.4] and j.tolist() == [1, 2]

@@ -63,7 +63,8 @@ def test_failed_points_are_excluded_with_one_warning_per_geometry(campaign, capl
     fit = fit_campaign(ds.isel(geometry=train), mask=mask.isel(geometry=train),
                        settings={"n_starts": 2, "min_training": 6})
     used = fit.training_mask.transpose("geometry", "amplitude")
-    assert not used.sel(geometry="t003").any() and used.sel(geometry="t007").all()
+    trained = set(fit.geometry.values[used.values.any(axis=1)])
+    assert "t003" not in trained and used.sel(geometry="t007").all()
     assert int(fit.n_training.sel(output="zeta").values[0]) == 11
     assert int(fit.n_training.sel(output="zeta").values[-1]) == 10
 

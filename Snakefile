@@ -23,6 +23,8 @@ include: "workflow/rules/static.smk"
 include: "workflow/rules/reduction.smk"
 include: "workflow/rules/dnnm.smk"
 include: "workflow/rules/studies.smk"
+include: "workflow/rules/surrogate.smk"
+include: "workflow/rules/sensitivity.smk"
 
 
 rule all:
@@ -33,3 +35,11 @@ rule all:
         f"{RESULTS}/modal/resonance.yaml",
         f"{RESULTS}/figures/static_contact_maps.png",
         f"{RESULTS}/figures/backbones_reference_rings.png",
+        f"{RESULTS}/surrogate/validation.nc",
+        f"{RESULTS}/figures/fig13_predicted_vs_computed.png",
+        f"{RESULTS}/figures/fig13_validation_backbones.png",
+        f"{RESULTS}/figures/fig14_kappa1.png",
+        f"{RESULTS}/surrogate/optimum.yaml",
+        f"{RESULTS}/figures/fig17_envelopes.png",
+        f"{RESULTS}/sensitivity/sobol_global.nc",
+        f"{RESULTS}/figures/fig18_sobol_global.png",

@@ -8,6 +8,7 @@ overhang, the blade root must lie above the groove, ...). Every failure is one
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 
@@ -122,11 +123,33 @@ def _solver_errors(config: dict) -> list[str]:
     return errors
 
 
+def _analytics_errors(config: dict) -> list[str]:
+    """Cross-field rules of the surrogate, exploration and sensitivity sections."""
+    errors = []
+    s = config["sampling"]
+    n_training = len(s["factorial_levels"]) ** 3 + s["n_lhs_training"]
+    if config["surrogate"]["min_training"] > n_training:
+        errors.append(f"surrogate.min_training = {config['surrogate']['min_training']} exceeds the "
+                      f"{n_training} training geometries of sampling")
+    for i, (lo, hi) in enumerate(config["sensitivity"]["local_box"]):
+        if not lo < hi:
+            errors.append(f"sensitivity.local_box[{i}] = {[lo, hi]} must have low < high (kappa{i + 1})")
+    levels = config["sensitivity"]["levels"]
+    if any(b <= a for a, b in zip(levels, levels[1:])):
+        errors.append(f"sensitivity.levels = {levels} must be strictly increasing")
+    degree, n_pce = config["sensitivity"]["pce_degree"], config["sensitivity"]["pce_samples"]
+    basis = math.comb(degree + 3, 3)  # polynomials of total degree <= p in the 3 shape parameters
+    if n_pce < basis:
+        errors.append(f"sensitivity.pce_samples = {n_pce} must be at least the {basis} polynomials of "
+                      f"degree <= sensitivity.pce_degree = {degree}")
+    return errors
+
+
 def validate_config(config: dict[str, Any]) -> dict[str, Any]:
     """Validate ``config`` in place semantics; raise one :class:`ConfigError` listing every problem."""
     errors = _schema_errors(config)
     if not errors:
-        errors = _geometry_errors(config) + _solver_errors(config)
+        errors = _geometry_errors(config) + _solver_errors(config) + _analytics_errors(config)
     if errors:
         raise ConfigError("invalid configuration:\n  - " + "\n  - ".join(errors))
     return config

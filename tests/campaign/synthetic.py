@@ -1,0 +1,73 @@
+"""Synthetic dnnm.nc files with analytic backbones, for the campaign-analytics tests.
+
+Backbone of geometry kappa on the amplitude grid alpha (log-spaced):
+    |q_res,z| = c(kappa) alpha,                 c = 2.27 (1 + 0.05 kappa1)   (m per kg^0.5 m)
+    zeta      = zeta_peak(kappa) b(alpha),      b = exp(-(ln alpha - ln 3e-5)^2 / 2),
+    zeta_peak = 3e-3 (1 - |kappa - KAPPA_STAR|^2 / 12)   (maximum at KAPPA_STAR)
+    omega0    = 2.195 - 0.01 (1 + 0.3 kappa1) s(alpha),   s a logistic step in ln alpha
+    gamma     = 2e4 alpha omega0^2 (zeta + 1e-4)
+so every output is smooth in kappa and the geometry of maximum zeta_max is KAPPA_STAR.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import xarray as xr
+
+from ringdamper.io import variable, write_netcdf
+
+KAPPA_STAR = np.array([0.4, -0.3, 0.2])
+ALPHA_PEAK = 3e-5
+
+
+def backbone(kappa, alpha) -> dict:
+    """Analytic outputs (module docstring) of geometry ``kappa`` at amplitudes ``alpha``."""
+    k = np.asarray(kappa, float)
+    la = np.log(alpha)
+    q = 2.27 * (1 + 0.05 * k[0]) * alpha
+    zeta_peak = 3e-3 * (1 - np.sum((k - KAPPA_STAR) ** 2) / 12)
+    zeta = zeta_peak * np.exp(-0.5 * (la - np.log(ALPHA_PEAK)) ** 2)
+    omega0 = 2.195 - 0.01 * (1 + 0.3 * k[0]) / (1 + np.exp(-(la - np.log(2e-5))))
+    gamma = 2e4 * alpha * omega0 ** 2 * (zeta + 1e-4)
+    return {"q_res_z": q, "zeta": zeta, "omega0": omega0, "gamma": gamma}
+
+
+def dnnm_dataset(kappa, alpha, status=None) -> xr.Dataset:
+    """A dnnm.nc-shaped dataset of the analytic backbone (``status`` per amplitude, default 0)."""
+    b = backbone(kappa, alpha)
+    status = np.zeros(alpha.size, np.int8) if status is None else np.asarray(status, np.int8)
+    data = {
+        "omega0": variable("amplitude", b["omega0"], "1", "normalised resonant frequency"),
+        "frequency": variable("amplitude", 543.0 * b["omega0"], "Hz", "resonant frequency"),
+        "zeta": variable("amplitude", b["zeta"], "1", "modal damping ratio of the dNNM"),
+        "gamma": variable("amplitude", b["gamma"], "N", "forcing level (E-EBM)"),
+        "phi": variable("amplitude", np.full(alpha.size, -1.5), "rad", "forcing phase (E-EBM)"),
+        "q_res_z": variable("amplitude", b["q_res_z"], "m", "peak of the blade-tip Z displacement"),
+        "rigid_body_imbalance": variable("amplitude", np.zeros(alpha.size), "1", "ratcheting drive"),
+        "status": variable("amplitude", status, "1", "0 converged ..."),
+    }
+    coords = {"amplitude": variable("amplitude", alpha, "kg0.5 m", "modal amplitude alpha")}
+    return xr.Dataset(data, coords=coords, attrs={"kappa": np.asarray(kappa, float)})
+
+
+def design(n_training: int, n_validation: int, seed: int = 1) -> pd.DataFrame:
+    """samples.csv-like table: corners + random training points, random validation points."""
+    rng = np.random.default_rng(seed)
+    corners = np.array([[a, b, c] for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)], float)
+    train = np.vstack([corners, rng.uniform(-1, 1, (n_training - 8, 3))])
+    val = rng.uniform(-1, 1, (n_validation, 3))
+    rows = [(f"t{i:03d}", *k, "training") for i, k in enumerate(train)]
+    rows += [(f"v{i:03d}", *k, "validation") for i, k in enumerate(val)]
+    return pd.DataFrame(rows, columns=["gid", "kappa1", "kappa2", "kappa3", "split"])
+
+
+def write_campaign(root, samples: pd.DataFrame, alpha, overrides=None) -> dict:
+    """Write results/geometry/{gid}/dnnm.nc of every sample under ``root`` (``overrides``: gid ->
+    dataset to write instead); returns gid -> path."""
+    paths = {}
+    for row in samples.itertuples():
+        path = root / "geometry" / row.gid / "dnnm.nc"
+        ds = (overrides or {}).get(row.gid)
+        write_netcdf(ds if ds is not None else dnnm_dataset([row.kappa1, row.kappa2, row.kappa3], alpha), path)
+        paths[row.gid] = path
+    return paths

@@ -1,0 +1,99 @@
+# Campaign analytics on the per-geometry dNNMs: dataset, Kriging surrogates, their validation and the
+# exploration of the design space (paper §3.2-3.3). The optimum is a checkpoint: rules that need the
+# optimum geometry read surrogate/optimum.yaml through checkpoints.optimum.get().
+
+
+rule aggregate:
+    input:
+        samples=f"{RESULTS}/samples.csv",
+        dnnm=expand(f"{RESULTS}/geometry/{{gid}}/dnnm.nc", gid=geometry_ids()),
+    output:
+        f"{RESULTS}/campaign/dataset.nc",
+    params:
+        gids=geometry_ids(),
+    log:
+        f"{RESULTS}/logs/aggregate.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/aggregate.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/aggregate.py"
+
+
+rule kriging:
+    input:
+        f"{RESULTS}/campaign/dataset.nc",
+    output:
+        f"{RESULTS}/surrogate/kriging.nc",
+    log:
+        f"{RESULTS}/logs/kriging.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/kriging.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/kriging.py"
+
+
+rule validation:
+    input:
+        dataset=f"{RESULTS}/campaign/dataset.nc",
+        kriging=f"{RESULTS}/surrogate/kriging.nc",
+    output:
+        nc=f"{RESULTS}/surrogate/validation.nc",
+        csv=report(f"{RESULTS}/surrogate/validation_metrics.csv", category="Surrogates",
+                   caption="../report/validation_metrics.rst"),
+        scatter=report(f"{RESULTS}/figures/fig13_predicted_vs_computed.png", category="Surrogates",
+                       caption="../report/fig13_predicted_vs_computed.rst"),
+        cases=report(f"{RESULTS}/figures/fig13_validation_backbones.png", category="Surrogates",
+                     caption="../report/fig13_validation_backbones.rst"),
+    log:
+        f"{RESULTS}/logs/validation.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/validation.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/validation.py"
+
+
+rule one_at_a_time:
+    input:
+        dataset=f"{RESULTS}/campaign/dataset.nc",
+        kriging=f"{RESULTS}/surrogate/kriging.nc",
+    output:
+        nc=f"{RESULTS}/surrogate/oat.nc",
+        fig14=report(f"{RESULTS}/figures/fig14_kappa1.png", category="Design space",
+                     caption="../report/fig14_kappa1.rst"),
+        fig15=report(f"{RESULTS}/figures/fig15_kappa2.png", category="Design space",
+                     caption="../report/fig15_kappa2.rst"),
+        fig16=report(f"{RESULTS}/figures/fig16_kappa3.png", category="Design space",
+                     caption="../report/fig16_kappa3.rst"),
+    log:
+        f"{RESULTS}/logs/one_at_a_time.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/one_at_a_time.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/one_at_a_time.py"
+
+
+checkpoint optimum:
+    input:
+        dataset=f"{RESULTS}/campaign/dataset.nc",
+        kriging=f"{RESULTS}/surrogate/kriging.nc",
+    output:
+        optimum=f"{RESULTS}/surrogate/optimum.yaml",
+        grid=f"{RESULTS}/surrogate/grid.nc",
+        figure=report(f"{RESULTS}/figures/fig17_envelopes.png", category="Design space",
+                      caption="../report/fig17_envelopes.rst"),
+    log:
+        f"{RESULTS}/logs/optimum.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/optimum.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/optimum.py"

@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ..hbm.continuation import Status
+from ..nonlinear.continuation import Status
 from ..io import variable
 
 log = logging.getLogger(__name__)

@@ -75,6 +75,7 @@ DEFAULT_SETTINGS = {
 STATUS_GP, STATUS_CONSTANT, STATUS_UNFITTED = 0, 1, 2
 STATUS_MEANINGS = "gaussian_process constant_data too_few_training_points"
 MATCH_RTOL = 1.0e-6  # allowed numpy/OpenTURNS prediction gap, fraction of the data spread
+AMPLITUDE_RTOL = 1.0e-6  # OpenTURNS' amplitude vs the closed-form ML estimate at its θ, ν
 NUGGET_PROFILE = 5  # log-spaced nugget values tried when the nugget is estimated
 # data whose spread is below this times max|y| (round-off) are taken as constant: no process is fitted
 CONSTANT_RTOL = 1.0e-12
@@ -182,6 +183,15 @@ class GPModel:
         var = 1.0 + self.nugget - np.einsum("ij,ij->j", b, b) + u * u / self.one_Rinv_1
         return mean, self.sigma * np.sqrt(np.maximum(var, 0.0))
 
+    def ml_sigma(self) -> float:
+        """σ̂ = √((y − β̂1)ᵀR⁻¹(y − β̂1) / (N − 1)), the analytical maximum-likelihood amplitude at the
+        model's θ, ν (OpenTURNS' unbiased estimate)."""
+        if self.is_constant:
+            return 0.0
+        beta = self.gls_beta()
+        w = self.Rinv_y - beta * self.Rinv_1
+        return float(np.sqrt(max((self.y - beta) @ w, 0.0) / (len(self.y) - 1)))
+
     def loo_residuals(self) -> np.ndarray:
         """Analytic leave-one-out residuals eᵢ = yᵢ - ŷ₋ᵢ(xᵢ) (Dubrule 1983, formula in the module doc)."""
         if self.is_constant:
@@ -272,6 +282,14 @@ def fit_model(x: np.ndarray, y: np.ndarray, settings: dict | None = None, name: 
     cm = result.getCovarianceModel()
     model = GPModel(s["kernel"], np.array(cm.getScale()), cm.getAmplitude()[0], cm.getNuggetFactor(),
                     result.getTrendCoefficients()[0], x, y)
+    sigma = model.ml_sigma()
+    if abs(sigma - model.sigma) > AMPLITUDE_RTOL * sigma:
+        # OpenTURNS 1.27 occasionally returns its starting amplitude (1) instead of the analytical
+        # estimate at the optimum θ (seen on one of 120 campaign models): the predictive σ was then
+        # wrong by orders of magnitude. The ML amplitude at θ, ν is closed-form, so it is restored.
+        log.warning("%s: OpenTURNS amplitude %.3g is not the ML estimate %.3g at its optimum; using the latter",
+                    name, model.sigma, sigma)
+        model = GPModel(s["kernel"], model.scale, sigma, model.nugget, model.beta, x, y)
     _check_against_ot(model, result, name)
     return model, float(result.getOptimalLogLikelihood())
 

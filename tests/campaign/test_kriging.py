@@ -215,3 +215,14 @@ def test_fit_does_not_depend_on_the_output_unit():
     np.testing.assert_allclose(small.scale, one.scale, rtol=1e-3)
     np.testing.assert_allclose(m2, 1e-5 * m1, rtol=0, atol=1e-3 * 1e-5 * np.ptp(y))
     np.testing.assert_allclose(s2, 1e-5 * s1, rtol=0, atol=1e-3 * 1e-5 * one.sigma)
+
+
+def test_ml_amplitude_is_the_closed_form_estimate(training):
+    """σ̂² = (y − β̂1)ᵀR⁻¹(y − β̂1)/(N − 1) at OpenTURNS' optimum θ equals its own amplitude (the
+    closed form that replaces a non-ML amplitude OpenTURNS sometimes returns)."""
+    x, y = training
+    result = K.fit_ot(x, y, FAST)
+    cm = result.getCovarianceModel()
+    model = K.GPModel("matern52", np.array(cm.getScale()), 1.0, cm.getNuggetFactor(),
+                            result.getTrendCoefficients()[0], x, y)
+    assert model.ml_sigma() == pytest.approx(cm.getAmplitude()[0], rel=1e-8)

@@ -22,6 +22,9 @@ include: "workflow/rules/modal.smk"
 include: "workflow/rules/static.smk"
 include: "workflow/rules/reduction.smk"
 include: "workflow/rules/dnnm.smk"
+include: "workflow/rules/frf.smk"
+# development stand-in of the surrogate's checkpoint: delete with the file when the surrogate rules are merged
+include: "workflow/rules/optimum_standin.smk"
 
 
 rule all:
@@ -31,3 +34,6 @@ rule all:
         f"{RESULTS}/modal/resonance.yaml",
         f"{RESULTS}/figures/static_contact_maps.png",
         f"{RESULTS}/figures/backbones_reference_rings.png",
+        f"{RESULTS}/geometry/{OPTIMUM_GID}/dnnm.nc",
+        f"{RESULTS}/frf/table3.csv",
+        f"{RESULTS}/figures/optimum_maps.png",

@@ -2,6 +2,7 @@ rule reduced:
     input:
         mesh=f"{RESULTS}/geometry/{{gid}}/mesh.vtu",
         static=f"{RESULTS}/geometry/{{gid}}/static.nc",
+        kappa_source=kappa_source,
     output:
         f"{RESULTS}/geometry/{{gid}}/reduced.nc",
     params:

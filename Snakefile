@@ -23,6 +23,7 @@ include: "workflow/rules/static.smk"
 include: "workflow/rules/reduction.smk"
 include: "workflow/rules/dnnm.smk"
 include: "workflow/rules/frf.smk"
+include: "workflow/rules/report.smk"
 # development stand-in of the surrogate's checkpoint: delete with the file when the surrogate rules are merged
 include: "workflow/rules/optimum_standin.smk"
 
@@ -37,3 +38,6 @@ rule all:
         f"{RESULTS}/geometry/{OPTIMUM_GID}/dnnm.nc",
         f"{RESULTS}/frf/table3.csv",
         f"{RESULTS}/figures/optimum_maps.png",
+        f"{RESULTS}/surrogate/optimum_check.csv",
+        f"{RESULTS}/tables/paper_comparison.csv",
+        f"{RESULTS}/tables/validation_metrics.html",

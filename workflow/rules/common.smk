@@ -50,3 +50,9 @@ def reference_gids():
 def one_at_a_time_gids():
     """Default ring and the six one-at-a-time extremes of Fig. 11 (label -> gid)."""
     return {label: gid_of(k) for label, k in REFERENCE_RINGS.items() if label != "paper optimum"}
+
+
+def frf_curves(gid):
+    """Forced-response curves of geometry ``gid``, one per forcing level (1, 2, ...)."""
+    levels = range(1, len(config["frf"]["target_amplitudes"]) + 1)
+    return [f"{RESULTS}/frf/{gid}/gamma_{level}.nc" for level in levels]

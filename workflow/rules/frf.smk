@@ -1,12 +1,7 @@
 # Optimum against default (paper §3.4, Fig. 19, Table 3): forcing levels from the default ring's
 # backbone, one forced-response job per ring and level (8 short jobs share the 2 cores), Table 3
 # and the figures.
-FRF_LEVELS = list(range(1, len(config["frf"]["target_amplitudes"]) + 1))
 FRF_RINGS = {"default": DEFAULT_GID, "optimum": OPTIMUM_GID}
-
-
-def frf_curves(ring):
-    return expand(f"{RESULTS}/frf/{FRF_RINGS[ring]}/gamma_{{level}}.nc", level=FRF_LEVELS)
 
 
 rule frf_levels:
@@ -46,8 +41,8 @@ rule frf_curve:
 
 rule table3:
     input:
-        default=frf_curves("default"),
-        optimum=frf_curves("optimum"),
+        default=frf_curves(DEFAULT_GID),
+        optimum=frf_curves(OPTIMUM_GID),
     output:
         csv=f"{RESULTS}/frf/table3.csv",
         html=report(f"{RESULTS}/tables/table3.html", category="Optimum vs default",
@@ -66,8 +61,8 @@ rule optimum_figures:
     input:
         static=[f"{RESULTS}/geometry/{gid}/static.nc" for gid in FRF_RINGS.values()],
         dnnm=[f"{RESULTS}/geometry/{gid}/dnnm.nc" for gid in FRF_RINGS.values()],
-        default=frf_curves("default"),
-        optimum=frf_curves("optimum"),
+        default=frf_curves(DEFAULT_GID),
+        optimum=frf_curves(OPTIMUM_GID),
     output:
         maps=report(f"{RESULTS}/figures/optimum_maps.png", category="Optimum vs default",
                     caption="../report/optimum_maps.rst"),

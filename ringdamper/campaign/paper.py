@@ -81,6 +81,7 @@ def paper_comparison(default, case_a, optimum, optimum_kappa, table3: pd.DataFra
         rows += _sobol_rows(sobol_global)
     for i, row in table3.head(len(TABLE3["gamma_N"])).iterrows():   # the paper has four levels
         for key, ours_col, name in (("reduction_pct", "reduction_eebm_pct", "reduction, E-EBM"),
+                                    ("reduction_pct", "reduction_frf_pct", "reduction, forced response"),
                                     ("default_mm", "default_eebm_mm", "default amplitude, E-EBM"),
                                     ("optimum_mm", "optimum_eebm_mm", "optimum amplitude, E-EBM")):
             unit = "%" if key == "reduction_pct" else "mm"

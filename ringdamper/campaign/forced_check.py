@@ -120,12 +120,10 @@ def forcing_levels(backbone: EEBMBackbone, targets, field: str = "frf.target_amp
 def forced_curve(structure, contacts, backbone: EEBMBackbone, gamma: float, *, H: int, nt: int,
                  zeta_s: float, band=(0.985, 1.015), omega_reference: float) -> xr.Dataset:
     """Forced response at ``gamma`` [N] over ``band × ω_E-EBM`` with its peak and the E-EBM
-    prediction (NaN, and the band around the backbone's last usable frequency, if the usable
-    backbone does not reach ``gamma``), as the ``gamma_{i}.nc`` dataset (``omega_reference``: ω_stuck,default [rad/s] of
-    the normalised frequency ω0)."""
+    prediction, as the ``gamma_{i}.nc`` dataset; ``omega_reference`` is ω_stuck,default [rad/s] of
+    the normalised frequency ω0. A level the usable backbone does not reach has no E-EBM
+    prediction (NaN); its curve is centred on the backbone's last usable frequency."""
     pred = backbone.at_forcing(gamma)
-    # a level the usable backbone does not reach has no E-EBM prediction (NaN); the curve is then
-    # centred on the backbone's last usable frequency
     centre = pred["omega"] if np.isfinite(pred["omega"]) else backbone.omega[-1]
     frf = forced_response(structure, contacts, gamma, band[0] * centre, band[1] * centre,
                           H=H, nt=nt, zeta_s=zeta_s)

@@ -92,7 +92,7 @@ def test_paper_comparison_rows_match_the_paper_when_we_equal_it():
                                sobol({k: np.array(v) + 0.1 for k, v in p.SOBOL_ZETA.items()}))
     s1 = shifted[shifted.quantity == "Sobol S1 of ζ to κ1 at 0.05 mm"]
     assert s1["ours"].item() == pytest.approx(0.51)
-    assert s1["where ours differ, and why"].item().startswith("differs: a prediction of our model")
+    assert s1["where ours differ, and why"].item().startswith("differs: at 0.05 mm")
     omega = sobol(p.SOBOL_ZETA, other=0.5).first_order          # S1(ω0, κ1) = 1, .99, .995, 1
     low = paper_comparison(default, case_a, optimum, (1.0, -1.0, -1.0), t3, sobol(p.SOBOL_ZETA, 0.5))
     assert omega.sel(output="omega0", parameter="kappa1").min() == 0.99

@@ -183,6 +183,7 @@ def table3(curves: dict) -> pd.DataFrame:
             row[f"{ring}_frf_vs_eebm_pct"] = 100 * (f / e - 1)
             row[f"{ring}_frf_status"] = int(ds.status)
         for method in ("eebm", "frf"):
-            row[f"reduction_{method}_pct"] = 100 * (1 - row[f"optimum_{method}_mm"] / row[f"default_{method}_mm"])
+            ratio = row[f"optimum_{method}_mm"] / row[f"default_{method}_mm"]
+            row[f"reduction_{method}_pct"] = 100 * (1 - ratio)
         rows.append(row)
     return pd.DataFrame(rows)

@@ -60,7 +60,8 @@ def test_surrogate_vs_computed_reports_exact_and_shifted_predictions():
 
 def sobol(values_at_005, other=0.9):
     """Sobol dataset (output × parameter × level) with the paper's ζ indices at 0.05 mm."""
-    outputs, params, levels = ["omega0", "zeta", "gamma"], ["kappa1", "kappa2", "kappa3"], [5e-5, 1e-4, 2e-4, 4e-4]
+    outputs, params = ["omega0", "zeta", "gamma"], ["kappa1", "kappa2", "kappa3"]
+    levels = [5e-5, 1e-4, 2e-4, 4e-4]
     data = {}
     for kind in ("first_order", "total_order"):
         a = np.full((3, 3, 4), other)
@@ -85,7 +86,8 @@ def test_paper_comparison_rows_match_the_paper_when_we_equal_it():
     numeric = table[table.quantity != "optimum κ"]
     assert np.allclose(numeric["ours / paper - 1 (%)"].astype(float), 0.0, atol=1e-9)
     assert (table.quantity.str.startswith("Sobol")).sum() == 7
-    assert table.loc[table.quantity == "optimum κ", "where ours differ, and why"].item() == "agrees (same corner)"
+    why = "where ours differ, and why"
+    assert table.loc[table.quantity == "optimum κ", why].item() == "agrees (same corner)"
     assert table["paper source"].str.contains("§").all()
     assert table["where ours differ, and why"].str.startswith("agrees").all()
     shifted = paper_comparison(default, case_a, optimum, (1.0, -1.0, -0.5), t3,
@@ -97,7 +99,7 @@ def test_paper_comparison_rows_match_the_paper_when_we_equal_it():
     low = paper_comparison(default, case_a, optimum, (1.0, -1.0, -1.0), t3, sobol(p.SOBOL_ZETA, 0.5))
     assert omega.sel(output="omega0", parameter="kappa1").min() == 0.99
     assert low.loc[low.quantity.str.startswith("Sobol S1 of ω0"), "ours"].item() == pytest.approx(0.99)
-    assert shifted.loc[shifted.quantity == "optimum κ", "where ours differ, and why"].item().startswith("differs")
+    assert shifted.loc[shifted.quantity == "optimum κ", why].item().startswith("differs")
 
 
 def test_html_table_escapes_text_and_rounds_numbers():

@@ -47,8 +47,12 @@ def test_dataset_and_surrogates(campaign, small_config):
     ds = read_netcdf(campaign / "campaign" / "dataset.nc")
     assert set(ds.sizes) >= {"geometry", "amplitude"}
     assert ds.sizes["amplitude"] == small_config["dnnm"]["n_amplitudes"]
-    assert {"kappa1", "kappa2", "kappa3", "split", "gid"} <= set(ds.coords)
+    assert {"kappa1", "kappa2", "kappa3", "split"} <= set(ds.coords)
+    samples = pd.read_csv(campaign / "samples.csv")
+    assert set(ds.geometry.values) == set(samples.gid)            # the gid is the geometry coordinate
     _check_units(ds)
+    usable = np.isin(ds.status.values, (0, 3))
+    assert usable.mean() > 0.9 and np.isfinite(ds.zeta.values[usable]).all()
     val = pd.read_csv(campaign / "surrogate" / "validation_metrics.csv")
     assert len(val) >= 4 and np.isfinite(val.select_dtypes("number").to_numpy()).any()
 

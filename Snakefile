@@ -25,6 +25,8 @@ include: "workflow/rules/dnnm.smk"
 include: "workflow/rules/studies.smk"
 include: "workflow/rules/surrogate.smk"
 include: "workflow/rules/sensitivity.smk"
+include: "workflow/rules/frf.smk"
+include: "workflow/rules/report.smk"
 
 
 rule all:
@@ -43,3 +45,9 @@ rule all:
         f"{RESULTS}/figures/fig17_envelopes.png",
         f"{RESULTS}/sensitivity/sobol_global.nc",
         f"{RESULTS}/figures/fig18_sobol_global.png",
+        f"{RESULTS}/geometry/{OPTIMUM_GID}/dnnm.nc",
+        f"{RESULTS}/frf/table3.csv",
+        f"{RESULTS}/figures/optimum_maps.png",
+        f"{RESULTS}/surrogate/optimum_check.csv",
+        f"{RESULTS}/tables/paper_comparison.csv",
+        f"{RESULTS}/tables/validation_metrics.html",

@@ -120,6 +120,13 @@ def _solver_errors(config: dict) -> list[str]:
     if d["n_time_samples"] < 2 * d["n_harmonics"] + 1:
         errors.append(f"dnnm.n_time_samples = {d['n_time_samples']} must be at least "
                       f"2 n_harmonics + 1 = {2 * d['n_harmonics'] + 1} (sampling theorem)")
+    f = config["frf"]
+    lo, hi = f["frequency_band"]
+    if not lo < 1.0 < hi:
+        errors.append(f"frf.frequency_band = {f['frequency_band']} must bracket 1 (the E-EBM resonance)")
+    targets = f["target_amplitudes"]
+    if any(b <= a for a, b in zip(targets, targets[1:])):
+        errors.append(f"frf.target_amplitudes = {targets} must be strictly increasing")
     return errors
 
 

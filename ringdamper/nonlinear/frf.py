@@ -4,10 +4,12 @@ extraction (paper §2.6 Fig. 9, §3.4 Fig. 19g; docs/design.md §3.5).
 The forcing is ``Re(γ F̂ e^{iωt})`` with ``F̂`` the structure's harmonic-1 forcing vector (phase 0),
 structural damping the modal ratio ``zeta_s``. The curve starts from a converged fixed-frequency
 solve at ``omega_start`` (seeded with the linearised stuck response) and follows the branch with
-pseudo-arc-length steps until ω passes ``omega_end``. The resonance peak is the maximum of the
-response measure along the branch, refined between the neighbouring points by a bounded Brent
-search over the arc-length coordinate (each evaluation a converged solution on the hyperplane
-normal to the local tangent).
+pseudo-arc-length steps until ω passes ``omega_end`` (status 1 if it turns back a whole band below
+``omega_start`` instead). A rigid-body hold of the ring lost within a failed step is pinned and
+the step retried, as in the EPMC (:meth:`ringdamper.nonlinear.condensed.CondensedHBM.pin_seen`). The
+resonance peak is the maximum of the response measure along the branch, refined between the
+neighbouring points by a bounded Brent search over the arc-length coordinate (each evaluation a
+converged solution on the hyperplane normal to the local tangent).
 """
 from __future__ import annotations
 
@@ -107,11 +109,17 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
 
     direction = np.zeros(z0.size)
     direction[-1] = sign
+    def outside(z):
+        """Past ``omega_end``, or turned back (after a fold) a whole band before ``omega_start``."""
+        return sign * (z[-1] - omega_end) >= 0 or sign * (omega_start - z[-1]) >= span
+
     run = arclength(problem.fun, z0, direction, rescale(z0, np.zeros(z0.size)), steps, tol,
-                    max_iter, stop=lambda z: sign * (z[-1] - omega_end) >= 0,
-                    max_points=max_points, rescale=rescale,
-                    accept=lambda z, ev: model.accept(z[:-1], ev))
-    return _frf(gamma, zeta_s, run.points, run.tangents, run.scales, run.status, run.reason,
+                    max_iter, stop=outside, max_points=max_points, rescale=rescale,
+                    accept=lambda z, ev: model.accept(z[:-1], ev), on_failure=model.pin_seen)
+    status, reason = run.status, run.reason
+    if status == Status.CONVERGED and sign * (run.points[-1].z[-1] - omega_end) < 0:
+        status, reason = Status.NO_CONVERGENCE, "the branch turned back below omega_start"
+    return _frf(gamma, zeta_s, run.points, run.tangents, run.scales, status, reason,
                 problem, tol, max_iter, drift_tol, t0)
 
 

@@ -62,3 +62,14 @@ def test_every_problem_is_listed(config):
     config["operation"]["engine_order"] = 0
     msg = _error(config)
     assert "material.density" in msg and "operation.engine_order" in msg
+
+
+@pytest.mark.parametrize("key, value, expected", [
+    ("target_amplitudes", [1e-4, 5e-5], "frf.target_amplitudes = [0.0001, 5e-05] must be strictly increasing"),
+    ("target_amplitudes", [-1e-4], "frf.target_amplitudes[0] = -0.0001 is out of range: allowed (0, 0.01]"),
+    ("frequency_band", [1.01, 1.02], "frf.frequency_band = [1.01, 1.02] must bracket 1"),
+    ("frequency_band", [0.4, 1.1], "frf.frequency_band[0] = 0.4 is out of range: allowed [0.5, 1.5]"),
+])
+def test_forced_response_settings(config, key, value, expected):
+    config["frf"][key] = value
+    assert expected in _error(config)

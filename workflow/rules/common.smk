@@ -1,5 +1,7 @@
 # Shared by the rules. The design of experiments is seeded and deterministic, so it is computed at
 # parse time: the DAG is static and a dry run lists every job (the `samples` rule writes the same table).
+import yaml
+
 from ringdamper.campaign.sampling import REFERENCE_RINGS, make_samples
 
 SAMPLES = make_samples(config["sampling"]).set_index("gid")
@@ -9,8 +11,27 @@ def geometry_ids():
     return list(SAMPLES.index)
 
 
+# The optimum found on the surrogate is a real geometry: gid ``optimum``, whose kappa is only known
+# once the checkpoint ``optimum`` has written optimum.yaml. Its mesh, static, reduced and dnnm jobs
+# take that file as input (``kappa_source``), so Snakemake runs the checkpoint first and re-evaluates
+# the DAG; ``checkpoints.optimum.get()`` raises until then.
+OPTIMUM_GID = "optimum"
+
+
+def optimum_yaml():
+    return checkpoints.optimum.get().output[0]
+
+
+def kappa_source(wildcards):
+    """Input fixing kappa: none for a sampled geometry, optimum.yaml for gid ``optimum``."""
+    return [optimum_yaml()] if wildcards.gid == OPTIMUM_GID else []
+
+
 def kappa_of(wildcards):
-    """kappa of geometry ``gid``."""
+    """kappa of geometry ``gid`` (the sample table, or optimum.yaml for gid ``optimum``)."""
+    if wildcards.gid == OPTIMUM_GID:
+        with open(optimum_yaml()) as fh:
+            return [float(k) for k in yaml.safe_load(fh)["kappa"]]
     row = SAMPLES.loc[wildcards.gid]
     return [float(row.kappa1), float(row.kappa2), float(row.kappa3)]
 
@@ -29,3 +50,9 @@ def reference_gids():
 def one_at_a_time_gids():
     """Default ring and the six one-at-a-time extremes of Fig. 11 (label -> gid)."""
     return {label: gid_of(k) for label, k in REFERENCE_RINGS.items() if label != "paper optimum"}
+
+
+def frf_curves(gid):
+    """Forced-response curves of geometry ``gid``, one per forcing level (1, 2, ...)."""
+    levels = range(1, len(config["frf"]["target_amplitudes"]) + 1)
+    return [f"{RESULTS}/frf/{gid}/gamma_{level}.nc" for level in levels]

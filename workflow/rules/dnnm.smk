@@ -21,6 +21,7 @@ rule dnnm:
         reduced=f"{RESULTS}/geometry/{{gid}}/reduced.nc",
         static=f"{RESULTS}/geometry/{{gid}}/static.nc",
         normalisation=f"{RESULTS}/modal/stuck_default.yaml",
+        kappa_source=kappa_source,
     output:
         f"{RESULTS}/geometry/{{gid}}/dnnm.nc",
     params:
@@ -40,8 +41,10 @@ rule backbone_figures:
         dnnm=[f"{RESULTS}/geometry/{gid}/dnnm.nc" for gid in reference_gids().values()],
         default_static=f"{RESULTS}/geometry/{DEFAULT_GID}/static.nc",
     output:
-        backbones=report(f"{RESULTS}/figures/backbones_reference_rings.png", category="Nonlinear modes"),
-        energy=report(f"{RESULTS}/figures/energy_map_default.png", category="Nonlinear modes"),
+        backbones=report(f"{RESULTS}/figures/backbones_reference_rings.png", category="Nonlinear modes",
+                         caption="../report/backbones_reference_rings.rst"),
+        energy=report(f"{RESULTS}/figures/energy_map_default.png", category="Nonlinear modes",
+                      caption="../report/energy_map_default.rst"),
     params:
         labels=list(reference_gids()),
     log:

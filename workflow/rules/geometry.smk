@@ -1,4 +1,6 @@
 rule mesh:
+    input:
+        kappa_source,
     output:
         f"{RESULTS}/geometry/{{gid}}/mesh.vtu",
     params:

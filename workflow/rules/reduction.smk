@@ -1,4 +1,6 @@
 rule reduced:
+    input:
+        kappa_source=kappa_source,
     output:
         f"{RESULTS}/geometry/{{gid}}/reduced.nc",
     params:

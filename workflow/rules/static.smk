@@ -1,4 +1,6 @@
 rule static:
+    input:
+        kappa_source=kappa_source,
     output:
         nc=f"{RESULTS}/geometry/{{gid}}/static.nc",
         vtu=f"{RESULTS}/geometry/{{gid}}/static.vtu",
@@ -18,7 +20,8 @@ rule static_maps:
     input:
         [f"{RESULTS}/geometry/{gid}/static.nc" for gid in one_at_a_time_gids().values()],
     output:
-        report(f"{RESULTS}/figures/static_contact_maps.png", category="Static contact"),
+        report(f"{RESULTS}/figures/static_contact_maps.png", category="Static contact",
+               caption="../report/static_contact_maps.rst"),
     params:
         labels=list(one_at_a_time_gids()),
     log:

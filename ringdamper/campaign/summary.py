@@ -1,0 +1,30 @@
+"""Scalar summary of a backbone, for comparisons (surrogate against computed, ours against the
+paper): the maximum modal damping ratio ζ_max, the amplitude |q_res,z| and normalised frequency ω0
+there, and ω0 at the lowest and highest amplitude of the usable backbone."""
+from __future__ import annotations
+
+import numpy as np
+
+USABLE = (0, 3)
+
+
+def backbone_summary(q, omega0, zeta, status=None) -> dict:
+    """``zeta_max``, ``q_at_zeta_max`` [m], ``omega0_at_zeta_max``, ``omega0_low`` and
+    ``omega0_high`` (first and last finite points) of a backbone given on one amplitude grid;
+    points whose ``status`` is not usable (0 or 3) or not finite are left out."""
+    q, omega0, zeta = (np.asarray(a, float) for a in (q, omega0, zeta))
+    ok = np.isfinite(q) & np.isfinite(omega0) & np.isfinite(zeta)
+    if status is not None:
+        ok &= np.isin(status, USABLE)
+    if not ok.any():
+        raise ValueError("the backbone has no usable point")
+    idx = np.flatnonzero(ok)
+    i = idx[np.argmax(zeta[idx])]
+    return {"zeta_max": float(zeta[i]), "q_at_zeta_max": float(q[i]),
+            "omega0_at_zeta_max": float(omega0[i]), "omega0_low": float(omega0[idx[0]]),
+            "omega0_high": float(omega0[idx[-1]]), "q_high": float(q[idx[-1]])}
+
+
+def dnnm_summary(ds) -> dict:
+    """:func:`backbone_summary` of a ``dnnm.nc`` dataset."""
+    return backbone_summary(ds.q_res_z.values, ds.omega0.values, ds.zeta.values, ds.status.values)

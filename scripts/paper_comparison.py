@@ -1,0 +1,15 @@
+"""Rule script: our reference rings, optimum, Sobol indices and Table 3 beside the paper's values."""
+import pandas as pd
+
+from ringdamper.campaign.paper import paper_comparison
+from ringdamper.campaign.report_tables import write_html_table
+from ringdamper.io import read_netcdf
+
+sm = snakemake  # noqa: F821 (injected by Snakemake)
+optimum = read_netcdf(sm.input.optimum)
+table = paper_comparison(read_netcdf(sm.input.default), read_netcdf(sm.input.case_a), optimum,
+                         optimum.attrs["kappa"], pd.read_csv(sm.input.table3),
+                         read_netcdf(sm.input.sobol))
+table.to_csv(sm.output.csv, index=False, float_format="%.6g")
+write_html_table(table, sm.output.html, "Our campaign beside the paper (Sun et al. 2022)")
+open(sm.log[0], "w").write(table.to_string() + "\n")

@@ -1,0 +1,69 @@
+# Tables of the report and the comparisons that need the surrogates: the Kriging prediction at the
+# optimum against its computed backbone, our figures beside the paper's, and the analytics' tables
+# (validation metrics, optimum, Sobol indices) as HTML pages the report shows inline.
+
+
+rule optimum_surrogate_check:
+    input:
+        kriging=f"{RESULTS}/surrogate/kriging.nc",
+        dnnm=f"{RESULTS}/geometry/{OPTIMUM_GID}/dnnm.nc",
+    output:
+        csv=f"{RESULTS}/surrogate/optimum_check.csv",
+        html=report(f"{RESULTS}/tables/optimum_check.html", category="Optimum vs default",
+                    caption="../report/optimum_check_table.rst"),
+        figure=report(f"{RESULTS}/figures/optimum_surrogate_check.png", category="Optimum vs default",
+                      caption="../report/optimum_surrogate_check.rst"),
+    log:
+        f"{RESULTS}/logs/optimum_surrogate_check.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/optimum_surrogate_check.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/optimum_check.py"
+
+
+rule paper_comparison:
+    input:
+        default=f"{RESULTS}/geometry/{DEFAULT_GID}/dnnm.nc",
+        case_a=f"{RESULTS}/geometry/{reference_gids()['kappa1=+1']}/dnnm.nc",
+        optimum=f"{RESULTS}/geometry/{OPTIMUM_GID}/dnnm.nc",
+        table3=f"{RESULTS}/frf/table3.csv",
+        sobol=f"{RESULTS}/sensitivity/sobol_global.nc",
+    output:
+        csv=f"{RESULTS}/tables/paper_comparison.csv",
+        html=report(f"{RESULTS}/tables/paper_comparison.html", category="Comparison with the paper",
+                    caption="../report/paper_comparison.rst"),
+    log:
+        f"{RESULTS}/logs/paper_comparison.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/paper_comparison.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/paper_comparison.py"
+
+
+rule report_tables:
+    input:
+        validation=f"{RESULTS}/surrogate/validation_metrics.csv",
+        optimum=f"{RESULTS}/surrogate/optimum.yaml",
+        sobol_global=f"{RESULTS}/sensitivity/sobol_global.nc",
+        sobol_local=f"{RESULTS}/sensitivity/sobol_local.nc",
+    output:
+        validation=report(f"{RESULTS}/tables/validation_metrics.html", category="Surrogates",
+                          caption="../report/validation_metrics_table.rst"),
+        optimum=report(f"{RESULTS}/tables/optimum.html", category="Design space",
+                       caption="../report/optimum_table.rst"),
+        sobol_global=report(f"{RESULTS}/tables/sobol_global.html", category="Sensitivity",
+                            caption="../report/sobol_global_table.rst"),
+        sobol_local=report(f"{RESULTS}/tables/sobol_local.html", category="Sensitivity",
+                           caption="../report/sobol_local_table.rst"),
+    log:
+        f"{RESULTS}/logs/report_tables.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/report_tables.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/report_tables.py"

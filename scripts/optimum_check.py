@@ -8,7 +8,7 @@ from ringdamper.plots.optimum import plot_surrogate_at_optimum
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 computed = read_netcdf(sm.input.dnnm)
 predicted = predicted_backbone(read_netcdf(sm.input.kriging), computed.attrs["kappa"])
-table = surrogate_vs_computed(predicted, computed)
+table = surrogate_vs_computed(predicted, computed, sm.config["exploration"]["optimum_max_level"])
 table.to_csv(sm.output.csv, index=False, float_format="%.6g")
 kappa = ", ".join(f"{k:.4f}" for k in computed.attrs["kappa"])
 write_html_table(table, sm.output.html, f"Surrogate against computed backbone at the optimum ({kappa})",

@@ -9,7 +9,7 @@ sm = snakemake  # noqa: F821 (injected by Snakemake)
 optimum = read_netcdf(sm.input.optimum)
 table = paper_comparison(read_netcdf(sm.input.default), read_netcdf(sm.input.case_a), optimum,
                          optimum.attrs["kappa"], pd.read_csv(sm.input.table3),
-                         read_netcdf(sm.input.sobol))
+                         read_netcdf(sm.input.sobol), sm.config["exploration"]["optimum_max_level"])
 table.to_csv(sm.output.csv, index=False, float_format="%.6g")
 write_html_table(table, sm.output.html, "Our campaign beside the paper (Sun et al. 2022)")
 open(sm.log[0], "w").write(table.to_string() + "\n")

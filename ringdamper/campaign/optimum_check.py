@@ -24,13 +24,13 @@ def predicted_backbone(kriging, kappa) -> dict:
     return {name: pred[name].values for name in pred.data_vars}
 
 
-def surrogate_vs_computed(predicted: dict, computed) -> pd.DataFrame:
+def surrogate_vs_computed(predicted: dict, computed, max_level=np.inf) -> pd.DataFrame:
     """Table: predicted and computed summary figures with their error (relative: predicted /
     computed − 1), then per output the RMS and largest error over the amplitudes where both are
     usable (relative: to the largest computed magnitude); ``predicted``: arrays on the amplitude grid
-    of ``computed``, a dnnm.nc dataset."""
-    p = backbone_summary(predicted["q_res_z"], predicted["omega0"], predicted["zeta"])
-    c = dnnm_summary(computed)
+    of ``computed``, a dnnm.nc dataset; ζ_max of both sought up to |q_res,z| = ``max_level`` [m]."""
+    p = backbone_summary(predicted["q_res_z"], predicted["omega0"], predicted["zeta"], max_level=max_level)
+    c = dnnm_summary(computed, max_level)
     rows = [{"quantity": k, "predicted": p[k], "computed": c[k], "error": p[k] - c[k],
              "relative error (%)": 100 * (p[k] / c[k] - 1)} for k in c]
     ok = np.isin(computed.status.values, USABLE)

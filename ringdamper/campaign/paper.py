@@ -77,14 +77,15 @@ def _ring_rows(label, summary, paper, whys):
 
 
 def paper_comparison(default, case_a, optimum, optimum_kappa, table3: pd.DataFrame,
-                     sobol_global=None) -> pd.DataFrame:
+                     sobol_global=None, max_level=np.inf) -> pd.DataFrame:
     """The comparison table: ``default``, ``case_a`` (κ = (1, 0, 0)) and ``optimum`` are dnnm.nc
     datasets, ``optimum_kappa`` the optimum found by our surrogate, ``table3`` our Table 3 and
-    ``sobol_global`` our global Sobol indices (dims output × parameter × level; skipped if None)."""
-    rows = _ring_rows("default ring", dnnm_summary(default), DEFAULT, {
+    ``sobol_global`` our global Sobol indices (dims output × parameter × level; skipped if None);
+    our ζ_max are sought up to |q_res,z| = ``max_level`` [m], the optimum criterion's range."""
+    rows = _ring_rows("default ring", dnnm_summary(default, max_level), DEFAULT, {
         "omega0_low": WHY_NORMALISED, "zeta_max": WHY_CALIBRATED, "q_at_zeta_max": WHY_CALIBRATED,
         "omega0_at_zeta_max": WHY_CALIBRATED})
-    rows += _ring_rows("case A (1, 0, 0)", dnnm_summary(case_a), CASE_A,
+    rows += _ring_rows("case A (1, 0, 0)", dnnm_summary(case_a, max_level), CASE_A,
                        dict.fromkeys(CASE_A, WHY_MODEL))
     paper_k, source = OPTIMUM["kappa"]
     same = np.allclose(optimum_kappa, paper_k)
@@ -93,7 +94,7 @@ def paper_comparison(default, case_a, optimum, optimum_kappa, table3: pd.DataFra
         "paper source": source,
         "where ours differ, and why": "agrees (same corner)" if same else f"differs: {WHY_OPTIMUM}"})
     opt = {k: v for k, v in OPTIMUM.items() if k != "kappa"}
-    rows += _ring_rows("optimum ring (computed)", dnnm_summary(optimum), opt, dict.fromkeys(opt, WHY_MODEL))
+    rows += _ring_rows("optimum ring (computed)", dnnm_summary(optimum, max_level), opt, dict.fromkeys(opt, WHY_MODEL))
     if sobol_global is not None:
         rows += _sobol_rows(sobol_global)
     for i, row in table3.head(len(TABLE3["gamma_N"])).iterrows():   # the paper has four levels

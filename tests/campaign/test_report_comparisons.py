@@ -46,6 +46,20 @@ def test_backbone_summary_finds_the_damping_peak_and_skips_unusable_points():
         backbone_summary(ds.q_res_z, ds.omega0, ds.zeta, np.ones(30, int))
 
 
+def test_zeta_max_is_sought_up_to_the_level_cap_only():
+    """A jump of ζ at the last amplitude beyond the cap does not decide ζ_max; ω0_high still
+    reads the whole usable backbone."""
+    ds = backbone(2e-3, 1.5e-4, 2.195, 2.187)
+    zeta = ds.zeta.values.copy()
+    zeta[-1] = 3e-3                                          # a last-point jump, above the peak
+    assert backbone_summary(ds.q_res_z, ds.omega0, zeta)["zeta_max"] == 3e-3
+    capped = backbone_summary(ds.q_res_z, ds.omega0, zeta, max_level=4.5e-4)
+    assert capped["zeta_max"] == pytest.approx(2e-3) and capped["q_at_zeta_max"] == pytest.approx(1.5e-4)
+    assert capped["omega0_high"] == ds.omega0.values[-1]
+    with pytest.raises(ValueError, match="no usable point with"):
+        backbone_summary(ds.q_res_z, ds.omega0, zeta, max_level=1e-9)
+
+
 def test_surrogate_vs_computed_reports_exact_and_shifted_predictions():
     computed = backbone(3.5e-3, 1e-4, 2.182, 2.17)
     exact = {k: computed[k].values.copy() for k in ("q_res_z", "omega0", "zeta", "gamma")}

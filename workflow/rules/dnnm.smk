@@ -10,6 +10,8 @@ rule stuck_default:
         f"{RESULTS}/modal/stuck_default.yaml",
     log:
         f"{RESULTS}/logs/stuck_default.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/stuck_default.tsv"
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -49,6 +51,8 @@ rule backbone_figures:
         labels=list(reference_gids()),
     log:
         f"{RESULTS}/logs/backbone_figures.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/backbone_figures.tsv"
     conda:
         "../../envs/ringdamper.yaml"
     script:

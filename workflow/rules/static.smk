@@ -26,6 +26,8 @@ rule static_maps:
         labels=list(one_at_a_time_gids()),
     log:
         f"{RESULTS}/logs/static_maps.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/static_maps.tsv"
     conda:
         "../../envs/ringdamper.yaml"
     script:

@@ -83,6 +83,8 @@ rule contact_calibration_figures:
                         category="Studies"),
     log:
         f"{RESULTS}/logs/studies/contact_calibration_figures.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/studies/contact_calibration_figures.tsv"
     conda:
         "../../envs/ringdamper.yaml"
     script:

@@ -15,8 +15,10 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e ".[test]"
 	@touch $(STAMP)
 
+# the whole campaign, then its report (every figure and table, from the results alone)
 campaign: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --keep-going
+	$(BIN)/snakemake --cores $(CORES) --report results/report.html
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q

@@ -22,7 +22,7 @@ def campaign(tmp_path):
     t005 not reached above the 6th amplitude (status 2), t007 held by the gauge at the top (status 3)."""
     samples = design(12, 3)
     config = {"dnnm": {"amplitude_min": ALPHA[0], "amplitude_max": ALPHA[-1], "n_amplitudes": ALPHA.size}}
-    failed = failed_dnnm(config, [0.1, 0.2, 0.3], "RuntimeError: static solve failed: no convergence")
+    failed = failed_dnnm(config, [0.1, 0.2, 0.3], "RuntimeError: static solve failed: no convergence", 3)
     overrides = {"t003": failed,
                  "t005": dnnm_dataset(samples.iloc[5, 1:4].to_numpy(float), ALPHA, [0] * 6 + [2, 2]),
                  "t007": dnnm_dataset(samples.iloc[7, 1:4].to_numpy(float), ALPHA, [0] * 5 + [3] * 3)}

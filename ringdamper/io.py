@@ -40,6 +40,11 @@ class InputFileError(ValueError):
     """An input file is unreadable or is not the stage file it should be."""
 
 
+def unreadable(path, err: OSError) -> InputFileError:
+    """The error of a NetCDF file that netCDF4/HDF5 cannot open (``err``), naming it."""
+    return InputFileError(f"{path}: truncated or not a NetCDF file ({err})")
+
+
 #: What each stage file must hold for its readers: variables, and attributes. A static.nc whose
 #: solve failed (attribute status != 0) holds only its attributes.
 REQUIRED = {
@@ -60,7 +65,7 @@ def read_netcdf(path, kind: str | None = None) -> xr.Dataset:
     except FileNotFoundError:
         raise
     except OSError as err:
-        raise InputFileError(f"{path}: truncated or not a NetCDF file ({err})") from err
+        raise unreadable(path, err) from err
     if kind is not None:
         variables, attrs = REQUIRED[kind]
         missing = [a for a in attrs if a not in ds.attrs]

@@ -86,3 +86,12 @@ def test_files_on_different_amplitude_grids_are_refused(tmp_path):
     paths = write_campaign(tmp_path, samples, ALPHA, {"t002": dnnm_dataset([0, 0, 0], 2 * ALPHA)})
     with pytest.raises(ValueError, match="t002.*amplitude grid differs"):
         aggregate(samples, paths)
+
+
+def test_a_truncated_dnnm_file_is_refused_naming_it(tmp_path):
+    samples = design(8, 0)
+    paths = write_campaign(tmp_path, samples, ALPHA)
+    data = paths["t004"].read_bytes()
+    paths["t004"].write_bytes(data[: len(data) // 3])
+    with pytest.raises(ValueError, match=r"t004/dnnm\.nc: truncated or not a NetCDF file"):
+        aggregate(samples, paths)

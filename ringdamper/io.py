@@ -36,9 +36,44 @@ def write_netcdf(ds: xr.Dataset, path) -> None:
     ds.to_netcdf(path, engine="netcdf4")
 
 
-def read_netcdf(path) -> xr.Dataset:
-    with xr.open_dataset(path, engine="netcdf4") as ds:
-        return ds.load()
+class InputFileError(ValueError):
+    """An input file is unreadable or is not the stage file it should be."""
+
+
+def unreadable(path, err: OSError) -> InputFileError:
+    """The error of a NetCDF file that netCDF4/HDF5 cannot open (``err``), naming it."""
+    return InputFileError(f"{path}: truncated or not a NetCDF file ({err})")
+
+
+#: What each stage file must hold for its readers: variables, and attributes. A static.nc whose
+#: solve failed (attribute status != 0) holds only its attributes.
+REQUIRED = {
+    "reduced": (("omega2", "contact_shape_real", "contact_shape_imag", "response_shape_real",
+                 "response_shape_imag"), ("n_sectors", "engine_order")),
+    "static": (("N0", "gap", "kn", "kt"), ("kappa", "status")),
+    "dnnm": (("omega0", "frequency", "zeta", "gamma", "q_res_z", "status"), ("kappa",)),
+}
+
+
+def read_netcdf(path, kind: str | None = None) -> xr.Dataset:
+    """The dataset of ``path``, loaded. An unreadable file (truncated, or not NetCDF) raises
+    :class:`InputFileError` naming it; with ``kind`` (a key of :data:`REQUIRED`) so does a file
+    that lacks a variable or attribute of that stage file."""
+    try:
+        with xr.open_dataset(path, engine="netcdf4") as ds:
+            ds = ds.load()
+    except FileNotFoundError:
+        raise
+    except OSError as err:
+        raise unreadable(path, err) from err
+    if kind is not None:
+        variables, attrs = REQUIRED[kind]
+        missing = [a for a in attrs if a not in ds.attrs]
+        if not missing and not (kind == "static" and ds.attrs["status"] != 0):
+            missing = [v for v in variables if v not in ds.variables]
+        if missing:
+            raise InputFileError(f"{path}: not a ringdamper {kind}.nc: {missing[0]} missing")
+    return ds
 
 
 def write_yaml(data: dict, path) -> None:

@@ -1,13 +1,12 @@
 """Rule script: samples.csv + every dnnm.nc -> campaign/dataset.nc (geometry x amplitude)."""
-import pandas as pd
-
 from ringdamper.campaign.dataset import aggregate, status_summary
+from ringdamper.campaign.sampling import read_samples
 from ringdamper.io import write_netcdf
 from ringdamper.logs import to_file
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = to_file(sm.log[0])
-samples = pd.read_csv(sm.input.samples)
+samples = read_samples(sm.input.samples)
 ds = aggregate(samples, dict(zip(sm.params.gids, sm.input.dnnm)))
 for split in ("training", "validation", "reference"):
     status = ds.status.values[(ds.split == split).values]

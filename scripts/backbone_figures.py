@@ -6,7 +6,7 @@ from ringdamper.plots.dnnm import plot_backbones, plot_energy_map
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log_to(sm.log[0])
-datasets = {label: read_netcdf(path) for label, path in zip(sm.params.labels, sm.input.dnnm)}
+datasets = {label: read_netcdf(path, "dnnm") for label, path in zip(sm.params.labels, sm.input.dnnm)}
 plot_backbones(datasets, sm.output.backbones)
-plot_energy_map(datasets["default"], read_netcdf(sm.input.default_static), sm.output.energy)
+plot_energy_map(datasets["default"], read_netcdf(sm.input.default_static, "static"), sm.output.energy)
 logging.getLogger("backbone_figures").info("rings %s -> %s", list(datasets), list(sm.output))

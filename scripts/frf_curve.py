@@ -9,10 +9,10 @@ from ringdamper.io import read_netcdf, write_netcdf
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 cfg = sm.config
 gamma = yaml.safe_load(open(sm.input.levels))["gamma_N"][int(sm.wildcards.level) - 1]
-dnnm = read_netcdf(sm.input.dnnm)
+dnnm = read_netcdf(sm.input.dnnm, "dnnm")
 H, nt = int(dnnm.attrs["n_harmonics"]), int(dnnm.attrs["n_time_samples"])
-ds = forced_curve(structure_from_reduced(read_netcdf(sm.input.reduced), H),
-                  contacts_from_static(read_netcdf(sm.input.static), cfg["contact"],
+ds = forced_curve(structure_from_reduced(read_netcdf(sm.input.reduced, "reduced"), H),
+                  contacts_from_static(read_netcdf(sm.input.static, "static"), cfg["contact"],
                                        dnnm.attrs["friction_law"]),
                   EEBMBackbone.from_dnnm(dnnm), gamma, H=H, nt=nt,
                   zeta_s=float(dnnm.attrs["structural_damping_ratio"]),

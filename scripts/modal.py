@@ -8,7 +8,7 @@ from ringdamper.plots.modal import plot_campbell, plot_mode_shapes, plot_nd_diag
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log_to(sm.log[0])
-static = read_netcdf(sm.input.static)
+static = read_netcdf(sm.input.static, "static")
 if static.attrs["status"] != 0:
     raise RuntimeError(f"the default ring's static solve failed: {static.attrs['reason']}")
 res = run_modal_stage(sm.config, in_contact=static.in_contact.values.astype(bool))

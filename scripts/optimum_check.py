@@ -6,7 +6,7 @@ from ringdamper.io import read_netcdf
 from ringdamper.plots.optimum import plot_surrogate_at_optimum
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-computed = read_netcdf(sm.input.dnnm)
+computed = read_netcdf(sm.input.dnnm, "dnnm")
 predicted = predicted_backbone(read_netcdf(sm.input.kriging), computed.attrs["kappa"])
 table = surrogate_vs_computed(predicted, computed, sm.config["exploration"]["optimum_max_level"])
 table.to_csv(sm.output.csv, index=False, float_format="%.6g")

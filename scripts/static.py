@@ -1,6 +1,7 @@
 """Rule script: kappa -> static.nc (N0, gap per pair) and static.vtu (ringdamper.static.stage).
 
-A failed geometry writes static.nc with status 99 and its reason, and an empty static.vtu."""
+A failed geometry writes static.nc with status 99 and its reason, and static.vtu of its mesh with NaN
+fields; an empty static.vtu only when no mesh could be built."""
 from ringdamper.io import log_to, write_netcdf, write_vtu
 from ringdamper.static.stage import run_static
 

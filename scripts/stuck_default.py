@@ -9,5 +9,5 @@ sm = snakemake  # noqa: F821 (injected by Snakemake)
 log_to(sm.log[0])
 with open(sm.input.resonance) as fh:
     target_hz = yaml.safe_load(fh)["frequency_hz"]
-write_yaml(default_normalisation(read_netcdf(sm.input.reduced), read_netcdf(sm.input.static), sm.config,
+write_yaml(default_normalisation(read_netcdf(sm.input.reduced, "reduced"), read_netcdf(sm.input.static, "static"), sm.config,
                                  target_hz), sm.output[0])

@@ -18,7 +18,7 @@ import pandas as pd
 import xarray as xr
 
 from ..nonlinear.continuation import Status
-from ..io import variable
+from ..io import unreadable, variable
 
 log = logging.getLogger(__name__)
 
@@ -40,7 +40,13 @@ class TrainingSetError(ValueError):
 
 def _read_dnnm(path) -> dict:
     """Arrays, units/long_names and attrs of one dnnm.nc (netCDF4 directly: ~10x faster than xarray)."""
-    with netCDF4.Dataset(path) as nc:
+    try:
+        nc = netCDF4.Dataset(path)
+    except FileNotFoundError:
+        raise
+    except OSError as err:
+        raise unreadable(path, err) from err
+    with nc:
         nc.set_auto_mask(False)
         out = {"amplitude": nc["amplitude"][:], "status": nc["status"][:].astype(np.int16),
                "reason": str(getattr(nc, "reason", "")), "attrs": {}}

@@ -67,7 +67,45 @@ def make_samples(sampling: dict) -> pd.DataFrame:
     design = np.vstack([training, validation])
     missing = [k for k in REFERENCE_RINGS.values() if not np.any(np.all(design == k, axis=1))]
     rows += [(f"r{i:03d}", *k, "reference") for i, k in enumerate(missing)]
-    return pd.DataFrame(rows, columns=["gid", "kappa1", "kappa2", "kappa3", "split"])
+    return check_samples(pd.DataFrame(rows, columns=list(SAMPLE_COLUMNS)), "the sampling design")
+
+
+SAMPLE_COLUMNS = ("gid", "kappa1", "kappa2", "kappa3", "split")
+SPLITS = ("training", "validation", "reference")
+
+
+def check_samples(samples: pd.DataFrame, source: str = "samples.csv") -> pd.DataFrame:
+    """The sample table, checked before any work is spent on it: the columns of
+    :data:`SAMPLE_COLUMNS`, unique gids, finite kappa_i in [-1, 1], split one of :data:`SPLITS`.
+    Raises ``ValueError`` naming ``source``, the row (0-based, header excluded), the field and the
+    allowed range."""
+    missing = [c for c in SAMPLE_COLUMNS if c not in samples.columns]
+    if missing:
+        raise ValueError(f"{source}: missing column(s) {missing}; expected columns {list(SAMPLE_COLUMNS)}")
+    duplicated = samples.gid[samples.gid.duplicated(keep=False)]
+    if len(duplicated):
+        gid = duplicated.iloc[0]
+        rows = list(duplicated.index[duplicated == gid])
+        raise ValueError(f"{source}: gid {gid!r} appears in rows {rows}; every gid must be unique")
+    for i in range(1, N_KAPPA + 1):
+        col = f"kappa{i}"
+        k = pd.to_numeric(samples[col], errors="coerce").to_numpy(float)
+        bad = np.flatnonzero(~((k >= -1.0) & (k <= 1.0)))
+        if bad.size:
+            r = samples.index[bad[0]]
+            raise ValueError(f"{source} row {r} (gid {samples.gid.loc[r]!r}): {col} = "
+                             f"{samples[col].loc[r]} is outside the allowed range [-1, 1]")
+    bad = ~samples.split.isin(SPLITS)
+    if bad.any():
+        r = samples.index[bad][0]
+        raise ValueError(f"{source} row {r} (gid {samples.gid.loc[r]!r}): split = {samples.split.loc[r]!r}, "
+                         f"allowed {list(SPLITS)}")
+    return samples
+
+
+def read_samples(path) -> pd.DataFrame:
+    """samples.csv, checked by :func:`check_samples`."""
+    return check_samples(pd.read_csv(path, dtype={"gid": str, "split": str}), str(path))
 
 
 def check_separation(training: np.ndarray, validation: np.ndarray, min_distance: float) -> None:

@@ -78,53 +78,63 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
     backbone = epmc(structure, contacts, alpha, H=cfg["n_harmonics"], nt=cfg["n_time_samples"],
                     omega_target=omega_stuck)
     res = eebm(backbone, zeta_s=cfg["structural_damping_ratio"])
-    m = structure.npairs
-    coords = {"amplitude": variable("amplitude", alpha, "kg0.5 m",
-                                    "modal amplitude alpha (mass-normalised fundamental)"),
-              "pair": variable("pair", np.arange(m), "1", "contact pair index")}
-    data = {
-        "omega0": variable("amplitude", normalised_frequency(res.omega, omega_stuck_default),
-                           "1", "normalised resonant frequency 2.195 omega / omega_stuck,default"),
-        "frequency": variable("amplitude", res.frequency, "Hz", "resonant frequency"),
-        "zeta": variable("amplitude", res.zeta, "1", "modal damping ratio of the dNNM"),
-        "gamma": variable("amplitude", res.gamma, "N", "forcing level (E-EBM)"),
-        "phi": variable("amplitude", res.phi, "rad", "forcing phase (E-EBM)"),
-        "q_res_z": variable("amplitude", res.q_res_peak, "m",
-                            "peak of the blade-tip Z displacement over the period"),
-        "q_res_z_h1": variable("amplitude", res.q_res_h1, "m",
-                               "first-harmonic magnitude of the blade-tip Z displacement"),
-        "energy_dissipated": variable(("amplitude", "pair"), res.energy_dissipated, "J",
-                                      "energy dissipated per cycle by each contact pair"),
-        "energy_damping": variable("amplitude", res.e_damp, "J",
-                                   "energy per cycle of the structural and dNNM damping (E-EBM E_damp)"),
-        "rigid_body_imbalance": variable(
-            "amplitude", backbone.drift, "1",
-            "mean force on the ring's free rigid-body modes (rotation about Z, axial) held by the gauge, "
-            "relative to the contact forces: the ratcheting drive"),
-        "status": variable("amplitude", res.status.astype(np.int8), "1",
-                           "0 converged, 1 no convergence, 2 not reached, 3 converged with the ring's "
-                           "mean rigid-body equilibrium unbalanced (ratcheting), 4 budget"),
-    }
+    values = {"omega0": normalised_frequency(res.omega, omega_stuck_default), "frequency": res.frequency,
+              "zeta": res.zeta, "gamma": res.gamma, "phi": res.phi, "q_res_z": res.q_res_peak,
+              "q_res_z_h1": res.q_res_h1, "energy_dissipated": res.energy_dissipated,
+              "energy_damping": res.e_damp, "rigid_body_imbalance": backbone.drift}
     attrs = {"kappa": np.asarray(static.attrs["kappa"], dtype=float), "n_harmonics": cfg["n_harmonics"],
              "n_time_samples": cfg["n_time_samples"], "friction_law": cfg["friction_law"],
              "structural_damping_ratio": cfg["structural_damping_ratio"],
              "omega_stuck": omega_stuck, "omega_stuck_default": omega_stuck_default,
              "wall_time_s": time.perf_counter() - start}
+    return dnnm_dataset(alpha, structure.npairs, values, res.status, attrs)
+
+
+#: The variables of dnnm.nc besides ``status``: name -> (dims, units, long_name). The one declaration
+#: of the file, shared by a solved geometry and a failed one.
+DNNM_VARIABLES = {
+    "omega0": ("amplitude", "1", "normalised resonant frequency 2.195 omega / omega_stuck,default"),
+    "frequency": ("amplitude", "Hz", "resonant frequency"),
+    "zeta": ("amplitude", "1", "modal damping ratio of the dNNM"),
+    "gamma": ("amplitude", "N", "forcing level (E-EBM)"),
+    "phi": ("amplitude", "rad", "forcing phase (E-EBM)"),
+    "q_res_z": ("amplitude", "m", "peak of the blade-tip Z displacement over the period"),
+    "q_res_z_h1": ("amplitude", "m", "first-harmonic magnitude of the blade-tip Z displacement"),
+    "energy_dissipated": (("amplitude", "pair"), "J", "energy dissipated per cycle by each contact pair"),
+    "energy_damping": ("amplitude", "J",
+                       "energy per cycle of the structural and dNNM damping (E-EBM E_damp)"),
+    "rigid_body_imbalance": (
+        "amplitude", "1",
+        "mean force on the ring's free rigid-body modes (rotation about Z, axial) held by the gauge, "
+        "relative to the contact forces: the ratcheting drive"),
+}
+STATUS_MEANING = ("0 converged, 1 no convergence, 2 not reached, 3 converged with the ring's mean "
+                  "rigid-body equilibrium unbalanced (ratcheting), 4 budget, 99 the geometry's chain failed "
+                  "(attribute reason)")
+
+
+def dnnm_dataset(alpha, n_pairs: int, values: dict, status, attrs: dict) -> xr.Dataset:
+    """dnnm.nc from its arrays: ``values`` holds exactly the variables of :data:`DNNM_VARIABLES`."""
+    if set(values) != set(DNNM_VARIABLES):
+        raise ValueError(f"dnnm.nc variables {sorted(values)} differ from {sorted(DNNM_VARIABLES)}")
+    coords = {"amplitude": variable("amplitude", alpha, "kg0.5 m",
+                                    "modal amplitude alpha (mass-normalised fundamental)"),
+              "pair": variable("pair", np.arange(n_pairs), "1", "contact pair index")}
+    data = {k: variable(dims, values[k], units, long_name)
+            for k, (dims, units, long_name) in DNNM_VARIABLES.items()}
+    data["status"] = variable("amplitude", np.asarray(status).astype(np.int8), "1", STATUS_MEANING)
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
-def failed_dnnm(config: dict, kappa, reason: str, status: int = 99) -> xr.Dataset:
-    """dnnm.nc of a geometry whose chain failed: every point carries ``status`` and the reason."""
+def failed_dnnm(config: dict, kappa, reason: str, n_pairs: int, status: int = 99) -> xr.Dataset:
+    """dnnm.nc of a geometry whose chain failed: the variables of a solved one, all NaN, every point
+    carrying ``status`` and the attribute ``reason``."""
     alpha = amplitude_grid(config["dnnm"])
-    nan = np.full(len(alpha), np.nan)
-    names = {"omega0": ("1", "normalised resonant frequency"), "frequency": ("Hz", "resonant frequency"),
-             "zeta": ("1", "modal damping ratio"), "gamma": ("N", "forcing level (E-EBM)"),
-             "phi": ("rad", "forcing phase"), "q_res_z": ("m", "peak blade-tip Z displacement"),
-             "q_res_z_h1": ("m", "first-harmonic blade-tip Z displacement")}
-    data = {k: variable("amplitude", nan, u, ln) for k, (u, ln) in names.items()}
-    data["status"] = variable("amplitude", np.full(len(alpha), status, np.int8), "1", "failure status")
-    return xr.Dataset(data, coords={"amplitude": variable("amplitude", alpha, "kg0.5 m", "modal amplitude")},
-                      attrs={"kappa": np.asarray(kappa, dtype=float), "reason": reason})
+    size = {"amplitude": len(alpha), "pair": int(n_pairs)}
+    values = {k: np.full([size[d] for d in np.atleast_1d(dims)], np.nan)
+              for k, (dims, _, _) in DNNM_VARIABLES.items()}
+    return dnnm_dataset(alpha, n_pairs, values, np.full(len(alpha), status),
+                        {"kappa": np.asarray(kappa, dtype=float), "reason": reason})
 
 
 def default_normalisation(reduced: xr.Dataset, static: xr.Dataset, config: dict,
@@ -151,7 +161,7 @@ def dnnm_stage(reduced: xr.Dataset, static: xr.Dataset, config: dict, kappa,
                       normalisation["omega_stuck_default_rad_s"])
     except Exception as err:  # a failed geometry must not stop the campaign
         log.exception("dNNM stage failed for kappa=%s", list(kappa))
-        return failed_dnnm(config, kappa, f"{type(err).__name__}: {err}")
+        return failed_dnnm(config, kappa, f"{type(err).__name__}: {err}", reduced.sizes["pair"])
     counts = np.bincount(ds.status.values.astype(int), minlength=5)
     log.info("kappa=%s status counts %s wall %.1f s", list(kappa), counts.tolist(), ds.attrs["wall_time_s"])
     return ds

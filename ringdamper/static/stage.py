@@ -110,30 +110,37 @@ def static_dataset(model: SectorModel, result: StaticContactResult, prob: Static
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
-def static_fields(model: SectorModel, result: StaticContactResult, prob: StaticProblem) -> dict:
-    """Point fields for ParaView: displacement, and N0 / gap on both nodes of each pair."""
+def static_fields(model: SectorModel, result: StaticContactResult | None = None,
+                  prob: StaticProblem | None = None) -> dict:
+    """Point fields for ParaView: displacement, and N0 / gap on both nodes of each pair; NaN where
+    the solve gave no value (no ``result``, or a non-finite solution)."""
     n = len(model.nodes)
-    n0 = np.zeros(n)
-    gap = np.zeros(n)
-    for nodes in (model.pairs.ring_node, model.pairs.blisk_node):
-        n0[nodes] = result.N0
-        gap[nodes] = result.gap
-    u = (prob.T @ result.u).reshape(-1, 3) if np.all(np.isfinite(result.u)) else np.zeros((n, 3))
+    n0 = np.full(n, np.nan if result is None else 0.0)
+    gap = n0.copy()
+    if result is not None:
+        for nodes in (model.pairs.ring_node, model.pairs.blisk_node):
+            n0[nodes] = result.N0
+            gap[nodes] = result.gap
+    solved = result is not None and np.all(np.isfinite(result.u))
+    u = (prob.T @ result.u).reshape(-1, 3) if solved else np.full((n, 3), np.nan)
     return {"displacement": u, "N0": n0, "gap": gap}
 
 
 def run_static(config: dict, kappa) -> tuple[xr.Dataset, SectorModel | None, dict | None]:
     """The static stage of geometry ``kappa`` at the operating speed: (static.nc dataset, model,
     static.vtu point fields). It never raises: a failure (meshing, assembly or solve) gives a
-    dataset with status 99 and the reason, and no model or fields, so the campaign goes on."""
+    dataset with status 99 and the reason; the model and its fields, all NaN, when the mesh was
+    built, else no model nor fields, so the campaign goes on."""
     speed = config["operation"]["speed_rpm"]
+    model = None
     try:
         model = build_model(build_sector(config, kappa), config)
         result, prob = solve_static(model, config)
     except Exception as err:  # a failed geometry must not stop the campaign
         log.exception("static stage failed for kappa=%s", list(kappa))
-        return xr.Dataset(attrs={"kappa": np.asarray(kappa, dtype=float), "speed_rpm": speed,
-                                 "status": 99, "reason": f"{type(err).__name__}: {err}"}), None, None
+        return (xr.Dataset(attrs={"kappa": np.asarray(kappa, dtype=float), "speed_rpm": speed,
+                                  "status": 99, "reason": f"{type(err).__name__}: {err}"}),
+                model, None if model is None else static_fields(model))
     ds = static_dataset(model, result, prob, kappa, speed)
     log.info("kappa=%s status=%d (%s) iterations=%d in_contact=%d/%d residual=%.2e "
              "complementarity=%.2e", list(kappa), result.status, result.reason, result.iterations,

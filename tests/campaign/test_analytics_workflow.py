@@ -32,7 +32,7 @@ def test_analytics_rules_on_a_synthetic_campaign(tmp_path, small_config):
     samples.to_csv(out / "samples.csv", index=False)
     alpha = amplitude_grid(small_config["dnnm"])
     k = samples.set_index("gid")[["kappa1", "kappa2", "kappa3"]]
-    overrides = {"t004": failed_dnnm(small_config, k.loc["t004"], "RuntimeError: static solve failed"),
+    overrides = {"t004": failed_dnnm(small_config, k.loc["t004"], "RuntimeError: static solve failed", 3),
                  "t006": dnnm_dataset(k.loc["t006"], alpha, [0] * (alpha.size - 3) + [3] * 3)}
     write_campaign(out, samples, alpha, overrides)
     cmd = [sys.executable, "-m", "snakemake", *[str(out / t) for t in TARGETS], "--snakefile",

@@ -22,7 +22,7 @@ def campaign(tmp_path):
     t005 not reached above the 6th amplitude (status 2), t007 held by the gauge at the top (status 3)."""
     samples = design(12, 3)
     config = {"dnnm": {"amplitude_min": ALPHA[0], "amplitude_max": ALPHA[-1], "n_amplitudes": ALPHA.size}}
-    failed = failed_dnnm(config, [0.1, 0.2, 0.3], "RuntimeError: static solve failed: no convergence")
+    failed = failed_dnnm(config, [0.1, 0.2, 0.3], "RuntimeError: static solve failed: no convergence", 3)
     overrides = {"t003": failed,
                  "t005": dnnm_dataset(samples.iloc[5, 1:4].to_numpy(float), ALPHA, [0] * 6 + [2, 2]),
                  "t007": dnnm_dataset(samples.iloc[7, 1:4].to_numpy(float), ALPHA, [0] * 5 + [3] * 3)}
@@ -85,4 +85,13 @@ def test_files_on_different_amplitude_grids_are_refused(tmp_path):
     samples = design(8, 0)
     paths = write_campaign(tmp_path, samples, ALPHA, {"t002": dnnm_dataset([0, 0, 0], 2 * ALPHA)})
     with pytest.raises(ValueError, match="t002.*amplitude grid differs"):
+        aggregate(samples, paths)
+
+
+def test_a_truncated_dnnm_file_is_refused_naming_it(tmp_path):
+    samples = design(8, 0)
+    paths = write_campaign(tmp_path, samples, ALPHA)
+    data = paths["t004"].read_bytes()
+    paths["t004"].write_bytes(data[: len(data) // 3])
+    with pytest.raises(ValueError, match=r"t004/dnnm\.nc: truncated or not a NetCDF file"):
         aggregate(samples, paths)

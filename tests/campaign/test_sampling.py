@@ -2,9 +2,11 @@
 import itertools
 
 import numpy as np
+import pandas as pd
+import pytest
 from scipy.spatial.distance import cdist
 
-from ringdamper.campaign.sampling import make_samples
+from ringdamper.campaign.sampling import make_samples, read_samples
 
 
 def test_campaign_samples(campaign_config):
@@ -46,3 +48,45 @@ def test_reference_rings_are_added_when_the_design_lacks_them(small_config):
     assert len(refs) == 7  # all but the paper optimum (1, -1, -1), a corner of the factorial
     assert refs.gid.str.startswith("r").all()
     assert ((refs[["kappa1", "kappa2", "kappa3"]] == 0).sum(axis=1) >= 2).all()
+
+
+@pytest.fixture
+def samples_csv(tmp_path, campaign_config):
+    """A valid samples.csv of the campaign design, to be spoiled by each test."""
+    path = tmp_path / "samples.csv"
+    make_samples(campaign_config["sampling"]).to_csv(path, index=False)
+    return path
+
+
+def spoil(path, edit):
+    edit(pd.read_csv(path)).to_csv(path, index=False)
+    return path
+
+
+def test_a_valid_samples_file_reads_back(samples_csv, campaign_config):
+    assert read_samples(samples_csv).equals(make_samples(campaign_config["sampling"]))
+
+
+def test_duplicate_gid_is_refused_naming_the_rows(samples_csv):
+    spoil(samples_csv, lambda t: t.assign(gid=t.gid.where(t.index != 5, t.gid[2])))
+    with pytest.raises(ValueError, match=r"samples\.csv: gid 't002' appears in rows \[2, 5\]"):
+        read_samples(samples_csv)
+
+
+def test_kappa_outside_the_box_is_refused_naming_row_field_and_range(samples_csv):
+    spoil(samples_csv, lambda t: t.assign(kappa2=t.kappa2.where(t.index != 4, 1.5)))
+    with pytest.raises(ValueError, match=r"row 4 \(gid 't004'\): kappa2 = 1\.5 is outside the allowed "
+                                         r"range \[-1, 1\]"):
+        read_samples(samples_csv)
+
+
+def test_missing_column_is_refused_naming_it(samples_csv):
+    spoil(samples_csv, lambda t: t.drop(columns="kappa3"))
+    with pytest.raises(ValueError, match=r"missing column\(s\) \['kappa3'\]"):
+        read_samples(samples_csv)
+
+
+def test_a_named_validation_case_outside_the_box_is_refused_at_design_time(campaign_config):
+    s = {**campaign_config["sampling"], "named_validation": [[0.0, -1.2, 0.0]]}
+    with pytest.raises(ValueError, match=r"kappa2 = -1\.2 is outside the allowed range \[-1, 1\]"):
+        make_samples(s)

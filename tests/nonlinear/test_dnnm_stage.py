@@ -50,8 +50,18 @@ def test_linear_limit_and_energy_balance(chain):
     assert np.all(ds.frequency.values[ok] <= ds.frequency.values[0] * (1 + 1e-9))
 
 
-def test_failed_geometry_writes_a_status_file(small_config):
-    ds = failed_dnnm(small_config, (0.1, 0.2, 0.3), "RuntimeError: static solve failed")
+def test_failed_geometry_has_the_variables_of_a_solved_one_all_nan(chain):
+    """One declaration: a failure file has the same variables, dims, units and long_names as a
+    success, its values all NaN, status 99 and the reason."""
+    cfg, reduced, static, structure, contacts, target_hz = chain
+    cfg = {**cfg, "dnnm": {**cfg["dnnm"], "n_amplitudes": 2}}
+    ok = run_dnnm(reduced, static, cfg, target_hz, target_stuck_frequency(structure, contacts, target_hz))
+    ds = failed_dnnm(cfg, (0.1, 0.2, 0.3), "RuntimeError: static solve failed", reduced.sizes["pair"])
     check_contract(ds)
+
+    def declaration(d):
+        return {k: (d[k].dims, d[k].attrs["units"], d[k].attrs["long_name"]) for k in d.variables}
+    assert declaration(ds) == declaration(ok)
+    assert dict(ds.sizes) == dict(ok.sizes)
+    assert all(np.all(np.isnan(ds[k].values)) for k in ds.data_vars if k != "status")
     assert np.all(ds.status.values == 99) and "static solve failed" in ds.attrs["reason"]
-    assert ds.sizes["amplitude"] == small_config["dnnm"]["n_amplitudes"]

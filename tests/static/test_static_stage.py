@@ -112,3 +112,21 @@ def test_absurd_stiffness_is_a_recorded_failure(campaign_config):
     assert result.status != 0 and "kn" in result.reason
     ds = static_dataset(model, result, prob, (0, 0, 0), 2081.0)
     assert ds.attrs["status"] != 0 and ds.attrs["reason"] == result.reason
+
+
+def test_a_failed_solve_writes_the_mesh_with_nan_fields(small_config, tmp_path):
+    """A geometry whose static solve raises (here an unknown method) gives status 99 with the reason,
+    and a static.vtu of its mesh whose fields are NaN (read back with meshio)."""
+    import meshio
+
+    from ringdamper.io import write_vtu
+    from ringdamper.static.stage import run_static
+
+    cfg = {**small_config, "static": {**small_config["static"], "method": "no-such-method"}}
+    ds, model, fields = run_static(cfg, (0.0, 0.0, 0.0))
+    assert ds.attrs["status"] == 99 and "no-such-method" in ds.attrs["reason"]
+    write_vtu(model, tmp_path / "static.vtu", point_data=fields)
+    mesh = meshio.read(tmp_path / "static.vtu")
+    assert len(mesh.points) == len(model.nodes) > 0
+    assert mesh.point_data["displacement"].shape == (len(model.nodes), 3)
+    assert all(np.all(np.isnan(mesh.point_data[k])) for k in ("displacement", "N0", "gap"))

@@ -1,10 +1,6 @@
 """The analytics rules of the Snakefile on a synthetic results tree of the test configuration:
 samples.csv and analytic dnnm.nc files (one geometry failed, one held by the gauge) stand in for the
 per-geometry chain, which Snakemake does not rerun."""
-import subprocess
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 import yaml
@@ -12,10 +8,10 @@ import yaml
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.nonlinear.stage import amplitude_grid, failed_dnnm
 from ringdamper.io import check_contract, read_netcdf
+from tests.snakemake_run import REPO, run_snakemake
 
 from .synthetic import dnnm_dataset, write_campaign
 
-REPO = Path(__file__).resolve().parents[2]
 TARGETS = ["surrogate/validation.nc", "surrogate/validation_metrics.csv", "surrogate/oat.nc",
            "surrogate/optimum.yaml", "surrogate/grid.nc", "sensitivity/sobol_global.nc",
            "sensitivity/sobol_local.nc", "sensitivity/sobol_indices.csv",
@@ -35,10 +31,7 @@ def test_analytics_rules_on_a_synthetic_campaign(tmp_path, small_config):
     overrides = {"t004": failed_dnnm(small_config, k.loc["t004"], "RuntimeError: static solve failed", 3),
                  "t006": dnnm_dataset(k.loc["t006"], alpha, [0] * (alpha.size - 3) + [3] * 3)}
     write_campaign(out, samples, alpha, overrides)
-    cmd = [sys.executable, "-m", "snakemake", *[str(out / t) for t in TARGETS], "--snakefile",
-           str(REPO / "Snakefile"), "--directory", str(REPO), "--configfile",
-           str(REPO / "tests" / "config_small.yaml"), "--cores", "1", "--config", f"results={out}"]
-    run = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
+    run = run_snakemake(out, REPO / "tests" / "config_small.yaml", *[out / t for t in TARGETS])
     assert run.returncode == 0, run.stderr[-3000:]
     assert not (out / "logs" / "dnnm").exists()  # the per-geometry chain was not rerun
 

@@ -3,16 +3,12 @@ small study grids, and its outputs agree with the library and with physics (the 
 thickness reaches the operating speed; the mesh study's reference level has zero error and linear bricks are stiffer; more modes
 never make the reduced target frequency worse; the contact calibration's chosen set is the one of
 ``contact:``)."""
-import subprocess
-import sys
-from pathlib import Path
-
 import numpy as np
 import pandas as pd
 import pytest
 import yaml
+from tests.snakemake_run import REPO, run_snakemake
 
-REPO = Path(__file__).resolve().parents[2]
 
 SMALL_STUDIES = {
     "hub_calibration": {"bracket": [0.01, 0.03], "xtol": 1.0e-5},
@@ -38,9 +34,7 @@ def test_study_rules_run_on_a_small_setting(tmp_path):
     path = tmp_path / "config.yaml"
     path.write_text(yaml.safe_dump(config))
     out = tmp_path / "results"
-    run = subprocess.run([sys.executable, "-m", "snakemake", "studies", "--snakefile", str(REPO / "Snakefile"),
-                          "--directory", str(REPO), "--configfile", str(path), "--cores", "2",
-                          "--config", f"results={out}"], capture_output=True, text=True, timeout=1500)
+    run = run_snakemake(out, path, "studies", cores=2, timeout=1500)
     assert run.returncode == 0, run.stderr[-3000:]
     studies = out / "studies"
 

@@ -1,9 +1,5 @@
 """The Snakemake campaign: config errors stop it before any job; the coarse campaign runs and its
 files agree with the library (status, KKT, samples)."""
-import subprocess
-import sys
-from pathlib import Path
-
 import numpy as np
 import pandas as pd
 import pytest
@@ -11,24 +7,14 @@ import yaml
 
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.io import read_netcdf
-
-REPO = Path(__file__).resolve().parents[2]
-
-
-def _snakemake(workdir, configfile, *targets, dry=False):
-    cmd = [sys.executable, "-m", "snakemake", *targets, "--snakefile", str(REPO / "Snakefile"),
-           "--directory", str(REPO), "--configfile", str(configfile), "--cores", "1"]
-    if dry:
-        cmd.append("-n")
-    cmd += ["--config", f"results={workdir}"]  # last: it takes every following key=value
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=900)
+from tests.snakemake_run import REPO, run_snakemake
 
 
 def test_bad_config_stops_before_any_job(tmp_path, small_config):
     bad = dict(small_config, mesh={**small_config["mesh"], "n_r_web": 0})
     path = tmp_path / "bad.yaml"
     path.write_text(yaml.safe_dump(bad))
-    run = _snakemake(tmp_path / "out", path, dry=True)
+    run = run_snakemake(tmp_path / "out", path, "-n")
     assert run.returncode != 0
     assert "mesh.n_r_web = 0 is out of range: allowed [1, +inf)" in run.stdout + run.stderr
     assert not (tmp_path / "out").exists()
@@ -44,7 +30,7 @@ def test_small_campaign_runs_and_agrees_with_the_library(tmp_path, small_config)
     targets = [str(out / "geometry" / gid / "dnnm.nc") for gid in chosen]
     targets += [str(out / "figures" / "static_contact_maps.png"), str(out / "modal" / "resonance.yaml"),
                 str(out / "samples.csv")]
-    run = _snakemake(out, REPO / "tests" / "config_small.yaml", *targets)
+    run = run_snakemake(out, REPO / "tests" / "config_small.yaml", *targets)
     assert run.returncode == 0, run.stderr[-3000:]
     samples = pd.read_csv(out / "samples.csv")
     expected = make_samples(small_config["sampling"])

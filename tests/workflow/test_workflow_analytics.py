@@ -1,26 +1,19 @@
 """End to end: the coarse test configuration through the whole campaign to results/report.html
 (every geometry, the analytics, the optimum as a real geometry, the forced responses, Table 3 and
 the report), with assertions on the contents of the files."""
-import subprocess
-import sys
-from pathlib import Path
-
 import numpy as np
 import pandas as pd
 import pytest
 import yaml
 
 from ringdamper.io import read_netcdf
+from tests.snakemake_run import REPO, run_snakemake
 
-REPO = Path(__file__).resolve().parents[2]
 CONFIG = REPO / "tests" / "config_small.yaml"
 
 
 def _snakemake(results, *args):
-    cmd = [sys.executable, "-m", "snakemake", *args, "--snakefile", str(REPO / "Snakefile"),
-           "--directory", str(REPO), "--configfile", str(CONFIG), "--cores", "2",
-           "--config", f"results={results}"]
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=1200)
+    return run_snakemake(results, CONFIG, *args, cores=2, timeout=1200)
 
 
 @pytest.fixture(scope="module")

@@ -1,0 +1,15 @@
+"""Run the repository's Snakefile in a subprocess, as a user would, on a configuration and a results
+folder of the test's own (shared by the workflow tests)."""
+import subprocess
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+
+
+def run_snakemake(results, configfile, *args, cores=1, timeout=900):
+    """``snakemake *args`` (targets and flags) with ``configfile``, writing into ``results``."""
+    cmd = [sys.executable, "-m", "snakemake", *map(str, args), "--snakefile", str(REPO / "Snakefile"),
+           "--directory", str(REPO), "--configfile", str(configfile), "--cores", str(cores),
+           "--config", f"results={results}"]  # last: --config takes every following key=value
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)

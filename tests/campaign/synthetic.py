@@ -14,7 +14,9 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ringdamper.io import variable, write_netcdf
+from ringdamper.io import write_netcdf
+from ringdamper.nonlinear.stage import DNNM_VARIABLES
+from ringdamper.nonlinear.stage import dnnm_dataset as stage_dataset
 
 KAPPA_STAR = np.array([0.4, -0.3, 0.2])
 ALPHA_PEAK = 3e-5
@@ -32,22 +34,18 @@ def backbone(kappa, alpha) -> dict:
     return {"q_res_z": q, "zeta": zeta, "omega0": omega0, "gamma": gamma}
 
 
-def dnnm_dataset(kappa, alpha, status=None) -> xr.Dataset:
-    """A dnnm.nc-shaped dataset of the analytic backbone (``status`` per amplitude, default 0)."""
+def dnnm_dataset(kappa, alpha, status=None, n_pairs: int = 2) -> xr.Dataset:
+    """The dnnm.nc of the analytic backbone, written through the dNNM stage's own declaration
+    (``status`` per amplitude, default 0): the four analytic outputs, the frequency in Hz and a
+    constant phase; the per-pair energies and diagnostics, which the analytics do not read, are 0."""
     b = backbone(kappa, alpha)
     status = np.zeros(alpha.size, np.int8) if status is None else np.asarray(status, np.int8)
-    data = {
-        "omega0": variable("amplitude", b["omega0"], "1", "normalised resonant frequency"),
-        "frequency": variable("amplitude", 543.0 * b["omega0"], "Hz", "resonant frequency"),
-        "zeta": variable("amplitude", b["zeta"], "1", "modal damping ratio of the dNNM"),
-        "gamma": variable("amplitude", b["gamma"], "N", "forcing level (E-EBM)"),
-        "phi": variable("amplitude", np.full(alpha.size, -1.5), "rad", "forcing phase (E-EBM)"),
-        "q_res_z": variable("amplitude", b["q_res_z"], "m", "peak of the blade-tip Z displacement"),
-        "rigid_body_imbalance": variable("amplitude", np.zeros(alpha.size), "1", "ratcheting drive"),
-        "status": variable("amplitude", status, "1", "0 converged ..."),
-    }
-    coords = {"amplitude": variable("amplitude", alpha, "kg0.5 m", "modal amplitude alpha")}
-    return xr.Dataset(data, coords=coords, attrs={"kappa": np.asarray(kappa, float)})
+    size = {"amplitude": alpha.size, "pair": n_pairs}
+    values = {k: np.zeros([size[d] for d in np.atleast_1d(dims)])
+              for k, (dims, _, _) in DNNM_VARIABLES.items()}
+    values.update(b, frequency=543.0 * b["omega0"], phi=np.full(alpha.size, -1.5),
+                  q_res_z_h1=b["q_res_z"])
+    return stage_dataset(alpha, n_pairs, values, status, {"kappa": np.asarray(kappa, float)})
 
 
 def design(n_training: int, n_validation: int, seed: int = 1) -> pd.DataFrame:

@@ -29,7 +29,8 @@ bench: $(STAMP)
 # the studies behind the model's choices (config.yaml `studies:`), then their committed tables and figures
 studies: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --keep-going studies
-	cp results/studies/contact_calibration/*.csv docs/calibration/
+	cp results/studies/contact_calibration/*.csv results/studies/contact_calibration/tables.md docs/calibration/
+	cp results/studies/hub_calibration.yaml results/studies/mesh_convergence.csv results/studies/reduction_convergence.md docs/calibration/
 	cp results/studies/contact_calibration/*.png docs/figures/
 
 report: $(STAMP)

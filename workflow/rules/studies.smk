@@ -11,6 +11,7 @@ rule studies:
         expand(f"{STUDIES}/contact_calibration/{{stage}}.csv",
                stage=("coarse", "refine", "harmonics_A", "harmonics_B")),
         f"{STUDIES}/contact_calibration/calibration_default_backbone.png",
+        f"{STUDIES}/contact_calibration/tables.md",
 
 
 rule hub_calibration:
@@ -89,3 +90,19 @@ rule contact_calibration_figures:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_contact_figures.py"
+
+
+rule contact_calibration_tables:
+    input:
+        expand(f"{STUDIES}/contact_calibration/{{stage}}.csv",
+               stage=("coarse", "refine", "harmonics_A", "harmonics_B")),
+    output:
+        f"{STUDIES}/contact_calibration/tables.md",
+    log:
+        f"{RESULTS}/logs/studies/contact_calibration_tables.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/studies/contact_calibration_tables.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/study_contact_tables.py"

@@ -16,9 +16,9 @@ $(STAMP): pyproject.toml
 	@touch $(STAMP)
 
 # the whole campaign (profiles/default: 2 cores), then its report (every figure and table, from the
-# results alone). On a SLURM cluster: pip install -e ".[cluster]"; snakemake --profile profiles/slurm
+# results alone). On a SLURM cluster: pip install -e ".[cluster]"; snakemake --workflow-profile profiles/slurm
 campaign: $(STAMP)
-	$(BIN)/snakemake --profile profiles/default --cores $(CORES)
+	$(BIN)/snakemake --workflow-profile profiles/default --cores $(CORES)
 	$(BIN)/snakemake --cores $(CORES) --report results/report.html
 
 test: $(STAMP)

@@ -93,11 +93,11 @@ SMK=("$BIN/python" -m snakemake --snakefile "$REPO/Snakefile" --directory "$REPO
      --configfile "$REPO/tests/config_small.yaml")
 cd "$REPO"
 start=$(date +%s)
-"${SMK[@]}" --profile profiles/slurm --config "results=$WORK/slurm_results" > "$WORK/slurm_run.log" 2>&1 \
+"${SMK[@]}" --workflow-profile profiles/slurm --config "results=$WORK/slurm_results" > "$WORK/slurm_run.log" 2>&1 \
     || { tail -40 "$WORK/slurm_run.log"; exit 1; }
 log "SLURM run: $(( $(date +%s) - start )) s, $(grep -c 'Submitted .*job' "$WORK/slurm_run.log" || true) cluster jobs"
 start=$(date +%s)
-"${SMK[@]}" --profile profiles/default --config "results=$WORK/local_results" > "$WORK/local_run.log" 2>&1 \
+"${SMK[@]}" --workflow-profile profiles/default --config "results=$WORK/local_results" > "$WORK/local_run.log" 2>&1 \
     || { tail -40 "$WORK/local_run.log"; exit 1; }
 log "local run: $(( $(date +%s) - start )) s"
 "$BIN/python" -m tools.compare_results "$WORK/slurm_results" "$WORK/local_results"

@@ -27,6 +27,20 @@ def variable(dims, data, units: str, long_name: str, **attrs):
     return (dims, np.asarray(data), {"units": units, "long_name": long_name, **attrs})
 
 
+def declared_dataset(kind: str, declared: dict, values: dict, coords: dict, attrs: dict) -> xr.Dataset:
+    """A stage file from its declaration ``declared`` (name -> (dims, units, long_name)), the one
+    place its variables are listed: ``values`` must hold exactly those variables."""
+    if set(values) != set(declared):
+        raise ValueError(f"{kind} variables {sorted(values)} differ from {sorted(declared)}")
+    data = {k: variable(dims, values[k], units, long_name) for k, (dims, units, long_name) in declared.items()}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def nan_values(declared: dict, sizes: dict) -> dict:
+    """Every variable of a declaration, all NaN, with the dimension ``sizes``: a failed geometry's."""
+    return {k: np.full([sizes[d] for d in np.atleast_1d(dims)], np.nan) for k, (dims, _, _) in declared.items()}
+
+
 def check_contract(ds: xr.Dataset) -> None:
     missing = [name for name in list(ds.data_vars) + list(ds.coords)
                if not {"units", "long_name"} <= set(ds[name].attrs)]

@@ -26,7 +26,7 @@ from ringdamper.fem.contact_law import pair_stiffness
 from ringdamper.fem.model import SectorModel, build_model, node_dofs, relative_displacement_operator
 from ringdamper.fem.prestress import rpm_to_rad_s, spin_mass
 from ringdamper.geometry.sector import BODY_RING, build_sector
-from ringdamper.io import variable
+from ringdamper.io import declared_dataset, nan_values, variable
 
 log = logging.getLogger(__name__)
 
@@ -95,14 +95,10 @@ STATIC_VARIABLES = {
 
 def static_file(n_pairs: int, values: dict, attrs: dict) -> xr.Dataset:
     """static.nc from its arrays: ``values`` holds exactly the variables of :data:`STATIC_VARIABLES`."""
-    if set(values) != set(STATIC_VARIABLES):
-        raise ValueError(f"static.nc variables {sorted(values)} differ from {sorted(STATIC_VARIABLES)}")
     coords = {"pair": variable("pair", np.arange(n_pairs), "1", "contact pair index"),
               "direction": variable("direction", ["n", "t1", "t2"], "1", "local frame axis"),
               "component": variable("component", ["x", "y", "z"], "1", "Cartesian component")}
-    data = {k: variable(dims, values[k], units, long_name)
-            for k, (dims, units, long_name) in STATIC_VARIABLES.items()}
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    return declared_dataset("static.nc", STATIC_VARIABLES, values, coords, attrs)
 
 
 def static_dataset(model: SectorModel, result: StaticContactResult, prob: StaticProblem,
@@ -132,9 +128,7 @@ def static_dataset(model: SectorModel, result: StaticContactResult, prob: Static
 def failed_static(config: dict, kappa, reason: str, n_pairs: int) -> xr.Dataset:
     """static.nc of a geometry whose stage raised: the variables and attributes of a solved one, all
     NaN (in_contact -1; no pair when no mesh was built), status 99 and the ``reason``."""
-    shape = {"pair": n_pairs, "direction": 3, "component": 3}
-    values = {k: np.full([shape[d] for d in np.atleast_1d(dims)], np.nan)
-              for k, (dims, _, _) in STATIC_VARIABLES.items()}
+    values = nan_values(STATIC_VARIABLES, {"pair": n_pairs, "direction": 3, "component": 3})
     values["in_contact"] = np.full(n_pairs, -1, dtype=np.int8)
     attrs = {"kappa": np.asarray(kappa, dtype=float), "speed_rpm": float(config["operation"]["speed_rpm"]),
              "method": config["static"]["method"], "iterations": -1, "equilibrium_residual": np.nan,

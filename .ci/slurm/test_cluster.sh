@@ -95,7 +95,7 @@ cd "$REPO"
 start=$(date +%s)
 "${SMK[@]}" --workflow-profile profiles/slurm --config "results=$WORK/slurm_results" > "$WORK/slurm_run.log" 2>&1 \
     || { tail -40 "$WORK/slurm_run.log"; exit 1; }
-log "SLURM run: $(( $(date +%s) - start )) s, $(grep -c 'Submitted .*job' "$WORK/slurm_run.log" || true) cluster jobs"
+log "SLURM run: $(( $(date +%s) - start )) s, $(grep -c 'submitted with SLURM jobid' "$WORK/slurm_run.log" || true) cluster jobs"
 start=$(date +%s)
 "${SMK[@]}" --workflow-profile profiles/default --config "results=$WORK/local_results" > "$WORK/local_run.log" 2>&1 \
     || { tail -40 "$WORK/local_run.log"; exit 1; }

@@ -10,7 +10,7 @@ def small_campaign(tmp_path_factory):
     """Results folder of the whole small campaign, then the report (which must not recompute
     anything)."""
     results = tmp_path_factory.mktemp("campaign") / "results"
-    run = run_snakemake(results, CONFIG, cores=2, timeout=1200)
+    run = run_snakemake(results, CONFIG, cores=2, timeout=3600)
     assert run.returncode == 0, run.stderr[-4000:]
     run = run_snakemake(results, CONFIG, "--report", results / "report.html", cores=2)
     assert run.returncode == 0, run.stderr[-4000:]

@@ -15,7 +15,7 @@ from tools.compare_results import differences
 @pytest.mark.slow
 def test_a_run_from_scratch_on_one_core_gives_identical_arrays(small_campaign, tmp_path):
     results = tmp_path / "results"
-    run = run_snakemake(results, CONFIG, cores=1, timeout=1800)
+    run = run_snakemake(results, CONFIG, cores=1, timeout=3600)
     assert run.returncode == 0, run.stderr[-4000:]
     assert differences(results, small_campaign) == []
 

@@ -37,7 +37,7 @@ if ! command -v slurmctld >/dev/null || ! command -v munged >/dev/null; then
     apt-get install -y -qq slurm-wlm munge >/dev/null
 fi
 if pgrep -x slurmctld >/dev/null || pgrep -x slurmd >/dev/null; then
-    echo "a slurmctld or slurmd is already running (PIDs $(pgrep -x -d ' ' 'slurmctld|slurmd')): stop it first" >&2
+    echo "a slurmctld or slurmd is already running (PIDs $(pgrep -x slurmctld) $(pgrep -x slurmd)): stop it first" >&2
     exit 1
 fi
 if [ -e "$CONF" ] && ! grep -qx "$MARK" "$CONF"; then

@@ -7,7 +7,7 @@ CORES  ?= 2
 # one BLAS/OpenMP thread per process: jobs run side by side on a 2-core machine
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 
-.PHONY: campaign test bench studies report lint clean
+.PHONY: campaign test test-cluster bench studies report lint clean
 
 $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV) || python3 -m venv $(VENV)
@@ -15,13 +15,20 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e ".[test]"
 	@touch $(STAMP)
 
-# the whole campaign, then its report (every figure and table, from the results alone)
+# the whole campaign (profiles/default: 2 cores), then its report (every figure and table, from the
+# results alone). On a SLURM cluster: pip install -e ".[cluster]"; snakemake --workflow-profile profiles/slurm
 campaign: $(STAMP)
-	$(BIN)/snakemake --cores $(CORES) --keep-going
+	$(BIN)/snakemake --workflow-profile profiles/default --cores $(CORES)
 	$(BIN)/snakemake --cores $(CORES) --report results/report.html
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
+
+# the test campaign on a real single-node SLURM of this machine (root: installs and starts it), its
+# arrays against a local run of the same configuration; the daemons are stopped on exit
+test-cluster: $(STAMP)
+	$(BIN)/python -m pip install --quiet -e ".[test,cluster]"
+	.ci/slurm/test_cluster.sh $(BIN) $(or $(WORKDIR),$(CURDIR)/results/test-cluster)
 
 bench: $(STAMP)
 	$(BIN)/python -m ringdamper.bench --out results/benchmarks

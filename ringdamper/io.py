@@ -7,6 +7,10 @@ written as VTK triquadratic hexahedra).
 
 from __future__ import annotations
 
+import functools
+import hashlib
+import json
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -23,6 +27,20 @@ def variable(dims, data, units: str, long_name: str, **attrs):
     return (dims, np.asarray(data), {"units": units, "long_name": long_name, **attrs})
 
 
+def declared_dataset(kind: str, declared: dict, values: dict, coords: dict, attrs: dict) -> xr.Dataset:
+    """A stage file from its declaration ``declared`` (name -> (dims, units, long_name)), the one
+    place its variables are listed: ``values`` must hold exactly those variables."""
+    if set(values) != set(declared):
+        raise ValueError(f"{kind} variables {sorted(values)} differ from {sorted(declared)}")
+    data = {k: variable(dims, values[k], units, long_name) for k, (dims, units, long_name) in declared.items()}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def nan_values(declared: dict, sizes: dict) -> dict:
+    """Every variable of a declaration, all NaN, with the dimension ``sizes``: a failed geometry's."""
+    return {k: np.full([sizes[d] for d in np.atleast_1d(dims)], np.nan) for k, (dims, _, _) in declared.items()}
+
+
 def check_contract(ds: xr.Dataset) -> None:
     missing = [name for name in list(ds.data_vars) + list(ds.coords)
                if not {"units", "long_name"} <= set(ds[name].attrs)]
@@ -30,10 +48,64 @@ def check_contract(ds: xr.Dataset) -> None:
         raise ContractError(f"variables without units/long_name: {missing}")
 
 
-def write_netcdf(ds: xr.Dataset, path) -> None:
+#: Configuration sections each rule's NetCDF files depend on: the hash of these, and only these, is
+#: the file's ``config_sha256`` (a change elsewhere in config.yaml leaves it unchanged).
+_MODEL = ("material", "geometry", "mesh", "operation", "contact")
+_DNNM = _MODEL + ("static", "reduction", "modal", "dnnm")
+_SURROGATE = ("sampling",) + _DNNM + ("surrogate",)
+CONFIG_SECTIONS = {
+    "static": _MODEL + ("static",),
+    "reduced": _MODEL + ("reduction",),
+    "modal": _MODEL + ("static", "modal"),
+    "dnnm": _DNNM,
+    "frf_curve": _DNNM + ("frf",),
+    "aggregate": ("sampling",) + _DNNM,
+    "kriging": _SURROGATE,
+    "validation": _SURROGATE,
+    "one_at_a_time": _SURROGATE + ("exploration",),
+    "optimum": _SURROGATE + ("exploration",),
+    "sobol": _SURROGATE + ("sensitivity",),
+}
+
+
+@functools.lru_cache(maxsize=1)
+def software_provenance() -> dict:
+    """Versions of the package and of numpy, scipy and openturns, and the git commit of the source
+    tree when it is a git work tree (``unknown`` otherwise; ``+dirty`` with uncommitted changes)."""
+    from importlib.metadata import version
+
+    source = Path(__file__).resolve().parent.parent
+    try:
+        git = functools.partial(subprocess.run, capture_output=True, text=True, timeout=10, check=True,
+                                cwd=source)
+        commit = git(["git", "rev-parse", "HEAD"]).stdout.strip()
+        commit += "+dirty" if git(["git", "status", "--porcelain", "--untracked-files=no"]).stdout else ""
+    except (OSError, subprocess.SubprocessError):
+        commit = "unknown"
+    return {"ringdamper_version": version("ringdamper"), "git_commit": commit,
+            **{f"{lib}_version": version(lib) for lib in ("numpy", "scipy", "openturns")}}
+
+
+def provenance(config: dict | None = None, rule: str | None = None) -> dict:
+    """Provenance attributes of a NetCDF file: :func:`software_provenance`, and with ``config`` and
+    ``rule`` (a key of :data:`CONFIG_SECTIONS`) the sections the file depends on and the SHA-256 of
+    their canonical JSON."""
+    attrs = dict(software_provenance())
+    if config is not None:
+        sections = CONFIG_SECTIONS[rule]
+        text = json.dumps({k: config[k] for k in sections}, sort_keys=True, separators=(",", ":"))
+        attrs.update(config_sections=" ".join(sections),
+                     config_sha256=hashlib.sha256(text.encode()).hexdigest())
+    return attrs
+
+
+def write_netcdf(ds: xr.Dataset, path, config: dict | None = None, rule: str | None = None) -> None:
+    """Write ``ds`` (contract checked) with its :func:`provenance` attributes; a rule script passes
+    its configuration and rule name so that the file records the hash of what it depends on (kappa,
+    for a geometry's file, is the dataset's own ``kappa`` attribute)."""
     check_contract(ds)
     Path(path).parent.mkdir(parents=True, exist_ok=True)
-    ds.to_netcdf(path, engine="netcdf4")
+    ds.assign_attrs(provenance(config, rule)).to_netcdf(path, engine="netcdf4")
 
 
 class InputFileError(ValueError):
@@ -45,8 +117,8 @@ def unreadable(path, err: OSError) -> InputFileError:
     return InputFileError(f"{path}: truncated or not a NetCDF file ({err})")
 
 
-#: What each stage file must hold for its readers: variables, and attributes. A static.nc whose
-#: solve failed (attribute status != 0) holds only its attributes.
+#: What each stage file must hold for its readers: variables, and attributes (a failed geometry's
+#: files hold them too, NaN).
 REQUIRED = {
     "reduced": (("omega2", "contact_shape_real", "contact_shape_imag", "response_shape_real",
                  "response_shape_imag"), ("n_sectors", "engine_order")),
@@ -69,7 +141,7 @@ def read_netcdf(path, kind: str | None = None) -> xr.Dataset:
     if kind is not None:
         variables, attrs = REQUIRED[kind]
         missing = [a for a in attrs if a not in ds.attrs]
-        if not missing and not (kind == "static" and ds.attrs["status"] != 0):
+        if not missing:
             missing = [v for v in variables if v not in ds.variables]
         if missing:
             raise InputFileError(f"{path}: not a ringdamper {kind}.nc: {missing[0]} missing")

@@ -10,5 +10,6 @@ sm = snakemake  # noqa: F821 (injected by Snakemake)
 log_to(sm.log[0])
 with open(sm.input.normalisation) as fh:
     normalisation = yaml.safe_load(fh)
-write_netcdf(dnnm_stage(read_netcdf(sm.input.reduced, "reduced"), read_netcdf(sm.input.static, "static"), sm.config,
-                        sm.params.kappa, normalisation), sm.output[0])
+ds = dnnm_stage(read_netcdf(sm.input.reduced, "reduced"), read_netcdf(sm.input.static, "static"), sm.config,
+                sm.params.kappa, normalisation)
+write_netcdf(ds, sm.output[0], sm.config, sm.rule)

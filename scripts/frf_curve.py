@@ -19,7 +19,7 @@ ds = forced_curve(structure_from_reduced(read_netcdf(sm.input.reduced, "reduced"
                   band=cfg["frf"]["frequency_band"],
                   omega_reference=float(dnnm.attrs["omega_stuck_default"]))
 ds.attrs.update(gid=sm.wildcards.gid, level=int(sm.wildcards.level), kappa=dnnm.attrs["kappa"])
-write_netcdf(ds, sm.output[0])
+write_netcdf(ds, sm.output[0], sm.config, sm.rule)
 open(sm.log[0], "w").write(
     f"gamma {gamma:.6g} N: {ds.sizes['point']} points, status {int(ds.status)} ({ds.attrs['reason']}), "
     f"peak {1e3 * float(ds.peak_amplitude):.5f} mm vs E-EBM {1e3 * float(ds.eebm_amplitude):.5f} mm, "

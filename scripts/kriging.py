@@ -15,4 +15,4 @@ train = (ds.split == "training").values
 fit = fit_campaign(ds.isel(geometry=train), mask=mask.isel(geometry=train), settings=settings)
 log.info("fitted %d models; Q2 per output (median over amplitudes): %s", int((fit.status < 2).sum()),
          {str(o): round(float(fit.q2.sel(output=o).median()), 4) for o in fit.output.values})
-write_netcdf(fit, sm.output[0])
+write_netcdf(fit, sm.output[0], sm.config, sm.rule)

@@ -12,6 +12,6 @@ cfg = sm.config["exploration"]
 ds = read_netcdf(sm.input.dataset)
 levels = response_axis(ds, usable_mask(ds), cfg["n_levels"])
 oat = sweeps(KrigingSurrogate(read_netcdf(sm.input.kriging)), cfg["oat_points"], levels)
-write_netcdf(oat, sm.output.nc)
+write_netcdf(oat, sm.output.nc, sm.config, sm.rule)
 for i, path in enumerate([sm.output.fig14, sm.output.fig15, sm.output.fig16]):
     plot_one_at_a_time(oat, i, path)

@@ -4,4 +4,4 @@ from ringdamper.reduction.stage import run_reduced
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log_to(sm.log[0])
-write_netcdf(run_reduced(sm.config, sm.params.kappa), sm.output[0])
+write_netcdf(run_reduced(sm.config, sm.params.kappa), sm.output[0], sm.config, sm.rule)

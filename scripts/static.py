@@ -12,4 +12,4 @@ if model is None:
     open(sm.output.vtu, "w").close()
 else:
     write_vtu(model, sm.output.vtu, point_data=fields)
-write_netcdf(ds, sm.output.nc)
+write_netcdf(ds, sm.output.nc, sm.config, sm.rule)

@@ -19,7 +19,7 @@ from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc
 from ringdamper.nonlinear.structure import HarmonicData, Structure
-from ringdamper.io import variable
+from ringdamper.io import declared_dataset, nan_values, variable
 from ringdamper.nonlinear.normalisation import normalised_frequency
 
 log = logging.getLogger(__name__)
@@ -115,24 +115,19 @@ STATUS_MEANING = ("0 converged, 1 no convergence, 2 not reached, 3 converged wit
 
 def dnnm_dataset(alpha, n_pairs: int, values: dict, status, attrs: dict) -> xr.Dataset:
     """dnnm.nc from its arrays: ``values`` holds exactly the variables of :data:`DNNM_VARIABLES`."""
-    if set(values) != set(DNNM_VARIABLES):
-        raise ValueError(f"dnnm.nc variables {sorted(values)} differ from {sorted(DNNM_VARIABLES)}")
     coords = {"amplitude": variable("amplitude", alpha, "kg0.5 m",
                                     "modal amplitude alpha (mass-normalised fundamental)"),
               "pair": variable("pair", np.arange(n_pairs), "1", "contact pair index")}
-    data = {k: variable(dims, values[k], units, long_name)
-            for k, (dims, units, long_name) in DNNM_VARIABLES.items()}
-    data["status"] = variable("amplitude", np.asarray(status).astype(np.int8), "1", STATUS_MEANING)
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    ds = declared_dataset("dnnm.nc", DNNM_VARIABLES, values, coords, attrs)
+    ds["status"] = variable("amplitude", np.asarray(status).astype(np.int8), "1", STATUS_MEANING)
+    return ds
 
 
 def failed_dnnm(config: dict, kappa, reason: str, n_pairs: int, status: int = 99) -> xr.Dataset:
     """dnnm.nc of a geometry whose chain failed: the variables of a solved one, all NaN, every point
     carrying ``status`` and the attribute ``reason``."""
     alpha = amplitude_grid(config["dnnm"])
-    size = {"amplitude": len(alpha), "pair": int(n_pairs)}
-    values = {k: np.full([size[d] for d in np.atleast_1d(dims)], np.nan)
-              for k, (dims, _, _) in DNNM_VARIABLES.items()}
+    values = nan_values(DNNM_VARIABLES, {"amplitude": len(alpha), "pair": int(n_pairs)})
     return dnnm_dataset(alpha, n_pairs, values, np.full(len(alpha), status),
                         {"kappa": np.asarray(kappa, dtype=float), "reason": reason})
 

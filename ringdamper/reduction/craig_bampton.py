@@ -23,9 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-from scipy.sparse.linalg import LinearOperator, eigsh
-
-from ..fem.linalg import factorize
+from ..fem.linalg import factorize, lowest_modes
 
 DENSE_EIGEN_LIMIT = 600  # interior sizes below this use a dense eigensolver for the fixed-interface modes
 
@@ -61,13 +59,8 @@ def _fixed_interface_modes(Kii, Mii, lu, n_fi):
         raise ValueError(f"n_fi = {n_fi} exceeds the {n} interior DoFs")
     if n <= DENSE_EIGEN_LIMIT or n_fi >= n - 1:
         w2, phi = sla.eigh(Kii.toarray(), Mii.toarray(), subset_by_index=(0, n_fi - 1))
-    else:
-        op = LinearOperator(Kii.shape, matvec=lu.solve, dtype=float)
-        w2, phi = eigsh(Kii, k=n_fi, M=Mii, sigma=0.0, which="LM", OPinv=op)
-        order = np.argsort(w2)
-        w2, phi = w2[order], phi[:, order]
-    phi = phi / np.sqrt(np.einsum("ij,ij->j", phi, Mii @ phi))
-    return w2, phi
+        return w2, phi / np.sqrt(np.einsum("ij,ij->j", phi, Mii @ phi))
+    return lowest_modes(Kii, Mii, n_fi, shift=0.0, lu=lu)
 
 
 def craig_bampton(K: sp.spmatrix, M: sp.spmatrix, boundary, interior, n_fi: int,

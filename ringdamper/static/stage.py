@@ -26,7 +26,7 @@ from ringdamper.fem.contact_law import pair_stiffness
 from ringdamper.fem.model import SectorModel, build_model, node_dofs, relative_displacement_operator
 from ringdamper.fem.prestress import rpm_to_rad_s, spin_mass
 from ringdamper.geometry.sector import BODY_RING, build_sector
-from ringdamper.io import variable
+from ringdamper.io import declared_dataset, nan_values, variable
 
 log = logging.getLogger(__name__)
 
@@ -72,34 +72,49 @@ def solve_static(model: SectorModel, config: dict, speed_rpm: float | None = Non
     return result, prob
 
 
+#: static.nc, declared once: name -> (dims, units, long_name). A failed geometry's file has the same
+#: variables, all NaN (in_contact -1), and the same attributes.
+STATIC_VARIABLES = {
+    "x": ("pair", "m", "pair position x (at rest)"),
+    "y": ("pair", "m", "pair position y (at rest)"),
+    "z": ("pair", "m", "pair position z (at rest)"),
+    "N0": ("pair", "N", "static normal contact force (preload)"),
+    "gap": ("pair", "m", "static normal gap"),
+    "penetration": ("pair", "m", "penalty penetration"),
+    "in_contact": ("pair", "1", "1 if N0 > 0, 0 if not, -1 without a solution"),
+    "tangential_force": (("pair", "direction"), "N",
+                         "static tangential force of the sticking springs (t1, t2)"),
+    "area": ("pair", "m2", "tributary contact area"),
+    "pressure": ("pair", "Pa", "static contact pressure N0 / area"),
+    "frame": (("pair", "direction", "component"), "1",
+              "local frame: rows n (ring to blisk), t1 (circumferential), t2 (axial)"),
+    "kn": ("pair", "N m-1", "normal contact stiffness"),
+    "kt": ("pair", "N m-1", "tangential contact stiffness"),
+}
+
+
+def static_file(n_pairs: int, values: dict, attrs: dict) -> xr.Dataset:
+    """static.nc from its arrays: ``values`` holds exactly the variables of :data:`STATIC_VARIABLES`."""
+    coords = {"pair": variable("pair", np.arange(n_pairs), "1", "contact pair index"),
+              "direction": variable("direction", ["n", "t1", "t2"], "1", "local frame axis"),
+              "component": variable("component", ["x", "y", "z"], "1", "Cartesian component")}
+    return declared_dataset("static.nc", STATIC_VARIABLES, values, coords, attrs)
+
+
 def static_dataset(model: SectorModel, result: StaticContactResult, prob: StaticProblem,
                    kappa, speed_rpm: float) -> xr.Dataset:
     """``static.nc`` (docs/design.md §4): per pair N0, gap, in_contact, position, frame; KKT in the attrs."""
     pairs = model.pairs
     m = len(pairs)
-    frame = pairs.frame
-    coords = {"pair": variable("pair", np.arange(m), "1", "contact pair index"),
-              "direction": variable("direction", ["n", "t1", "t2"], "1", "local frame axis"),
-              "component": variable("component", ["x", "y", "z"], "1", "Cartesian component")}
     finite = np.all(np.isfinite(result.N0))
-    data = {
-        "x": variable("pair", pairs.position[:, 0], "m", "pair position x (at rest)"),
-        "y": variable("pair", pairs.position[:, 1], "m", "pair position y (at rest)"),
-        "z": variable("pair", pairs.position[:, 2], "m", "pair position z (at rest)"),
-        "N0": variable("pair", result.N0, "N", "static normal contact force (preload)"),
-        "gap": variable("pair", result.gap, "m", "static normal gap"),
-        "penetration": variable("pair", result.penetration, "m", "penalty penetration"),
-        "in_contact": variable("pair", result.in_contact.astype(np.int8), "1", "1 if N0 > 0"),
-        "tangential_force": variable(("pair", "direction"),
-                                     np.column_stack([np.zeros(m), result.tangential]) if finite
-                                     else np.full((m, 3), np.nan), "N",
-                                     "static tangential force of the sticking springs (t1, t2)"),
-        "area": variable("pair", pairs.area, "m2", "tributary contact area"),
-        "pressure": variable("pair", result.N0 / pairs.area, "Pa", "static contact pressure N0 / area"),
-        "frame": variable(("pair", "direction", "component"), frame, "1",
-                          "local frame: rows n (ring to blisk), t1 (circumferential), t2 (axial)"),
-        "kn": variable("pair", prob.kn, "N m-1", "normal contact stiffness"),
-        "kt": variable("pair", prob.kt, "N m-1", "tangential contact stiffness"),
+    values = {
+        "x": pairs.position[:, 0], "y": pairs.position[:, 1], "z": pairs.position[:, 2],
+        "N0": result.N0, "gap": result.gap, "penetration": result.penetration,
+        "in_contact": result.in_contact.astype(np.int8),
+        "tangential_force": (np.column_stack([np.zeros(m), result.tangential]) if finite
+                             else np.full((m, 3), np.nan)),
+        "area": pairs.area, "pressure": result.N0 / pairs.area, "frame": pairs.frame,
+        "kn": prob.kn, "kt": prob.kt,
     }
     attrs = {"kappa": np.asarray(kappa, dtype=float), "speed_rpm": float(speed_rpm),
              "method": result.method, "iterations": int(result.iterations),
@@ -107,7 +122,18 @@ def static_dataset(model: SectorModel, result: StaticContactResult, prob: Static
              "complementarity_residual": float(result.complementarity),
              "status": int(result.status), "reason": result.reason,
              "n_in_contact": int(np.sum(result.in_contact)) if finite else -1}
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    return static_file(m, values, attrs)
+
+
+def failed_static(config: dict, kappa, reason: str, n_pairs: int) -> xr.Dataset:
+    """static.nc of a geometry whose stage raised: the variables and attributes of a solved one, all
+    NaN (in_contact -1; no pair when no mesh was built), status 99 and the ``reason``."""
+    values = nan_values(STATIC_VARIABLES, {"pair": n_pairs, "direction": 3, "component": 3})
+    values["in_contact"] = np.full(n_pairs, -1, dtype=np.int8)
+    attrs = {"kappa": np.asarray(kappa, dtype=float), "speed_rpm": float(config["operation"]["speed_rpm"]),
+             "method": config["static"]["method"], "iterations": -1, "equilibrium_residual": np.nan,
+             "complementarity_residual": np.nan, "status": 99, "reason": reason, "n_in_contact": -1}
+    return static_file(n_pairs, values, attrs)
 
 
 def static_fields(model: SectorModel, result: StaticContactResult | None = None,
@@ -128,20 +154,19 @@ def static_fields(model: SectorModel, result: StaticContactResult | None = None,
 
 def run_static(config: dict, kappa) -> tuple[xr.Dataset, SectorModel | None, dict | None]:
     """The static stage of geometry ``kappa`` at the operating speed: (static.nc dataset, model,
-    static.vtu point fields). It never raises: a failure (meshing, assembly or solve) gives a
-    dataset with status 99 and the reason; the model and its fields, all NaN, when the mesh was
+    static.vtu point fields). It never raises: a failure (meshing, assembly or solve) gives
+    :func:`failed_static` (status 99 and the reason); the model and its fields, all NaN, when the mesh was
     built, else no model nor fields, so the campaign goes on."""
-    speed = config["operation"]["speed_rpm"]
     model = None
     try:
         model = build_model(build_sector(config, kappa), config)
         result, prob = solve_static(model, config)
     except Exception as err:  # a failed geometry must not stop the campaign
         log.exception("static stage failed for kappa=%s", list(kappa))
-        return (xr.Dataset(attrs={"kappa": np.asarray(kappa, dtype=float), "speed_rpm": speed,
-                                  "status": 99, "reason": f"{type(err).__name__}: {err}"}),
+        return (failed_static(config, kappa, f"{type(err).__name__}: {err}",
+                              0 if model is None else len(model.pairs)),
                 model, None if model is None else static_fields(model))
-    ds = static_dataset(model, result, prob, kappa, speed)
+    ds = static_dataset(model, result, prob, kappa, config["operation"]["speed_rpm"])
     log.info("kappa=%s status=%d (%s) iterations=%d in_contact=%d/%d residual=%.2e "
              "complementarity=%.2e", list(kappa), result.status, result.reason, result.iterations,
              ds.attrs["n_in_contact"], len(model.pairs), result.residual, result.complementarity)

@@ -6,6 +6,7 @@ import xarray as xr
 
 from ringdamper.io import InputFileError, read_netcdf, variable, write_netcdf
 from ringdamper.nonlinear.stage import failed_dnnm
+from ringdamper.static.stage import failed_static
 
 
 def tiny_reduced() -> xr.Dataset:
@@ -51,10 +52,10 @@ def test_a_foreign_netcdf_is_refused_naming_the_missing_variable(tmp_path):
 
 
 def test_a_failed_geometry_files_pass_their_check(tmp_path):
-    """A failed dNNM file holds every variable a reader needs; a failed static.nc holds only its
-    attributes and is still accepted (its status tells the reader)."""
-    config = {"dnnm": {"amplitude_min": 1e-6, "amplitude_max": 1e-4, "n_amplitudes": 4}}
+    """A failed dNNM file holds every variable a reader needs, and so does a failed static.nc."""
+    config = {"dnnm": {"amplitude_min": 1e-6, "amplitude_max": 1e-4, "n_amplitudes": 4},
+              "operation": {"speed_rpm": 2081.0}, "static": {"method": "penalty"}}
     write_netcdf(failed_dnnm(config, (0.1, 0.2, 0.3), "RuntimeError: no convergence", 3), tmp_path / "d.nc")
     assert np.all(read_netcdf(tmp_path / "d.nc", "dnnm").status.values == 99)
-    xr.Dataset(attrs={"kappa": np.zeros(3), "status": 99, "reason": "meshing"}).to_netcdf(tmp_path / "s.nc")
+    write_netcdf(failed_static(config, (0.1, 0.2, 0.3), "ValueError: meshing", 0), tmp_path / "s.nc")
     assert read_netcdf(tmp_path / "s.nc", "static").attrs["status"] == 99

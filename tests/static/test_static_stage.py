@@ -130,3 +130,25 @@ def test_a_failed_solve_writes_the_mesh_with_nan_fields(small_config, tmp_path):
     assert len(mesh.points) == len(model.nodes) > 0
     assert mesh.point_data["displacement"].shape == (len(model.nodes), 3)
     assert all(np.all(np.isnan(mesh.point_data[k])) for k in ("displacement", "N0", "gap"))
+
+
+def test_a_failed_static_file_has_the_variables_of_a_solved_one(small_config, tmp_path):
+    """static.nc is declared once: a failed geometry's file has a solved one's variables, dimensions
+    and attributes, every value NaN (in_contact -1), status 99 and the reason; it reads back."""
+    from ringdamper.io import read_netcdf, write_netcdf
+    from ringdamper.static.stage import run_static
+
+    solved, model, _ = run_static(small_config, (0.0, 0.0, 0.0))
+    cfg = {**small_config, "static": {**small_config["static"], "method": "no-such-method"}}
+    failed, _, _ = run_static(cfg, (0.0, 0.0, 0.0))
+    write_netcdf(failed, tmp_path / "static.nc")
+    back = read_netcdf(tmp_path / "static.nc", "static")
+    assert solved.attrs["status"] == 0 and back.attrs["status"] == 99
+    assert set(back.data_vars) == set(solved.data_vars) and dict(back.sizes) == dict(solved.sizes)
+    assert set(solved.attrs) <= set(back.attrs)
+    for name, var in back.data_vars.items():
+        assert var.dtype == solved[name].dtype, name
+        if name == "in_contact":
+            assert np.all(var.values == -1)
+        else:
+            assert np.all(np.isnan(var.values)), name

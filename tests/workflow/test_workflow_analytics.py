@@ -7,27 +7,12 @@ import pytest
 import yaml
 
 from ringdamper.io import read_netcdf
-from tests.snakemake_run import REPO, run_snakemake
-
-CONFIG = REPO / "tests" / "config_small.yaml"
-
-
-def _snakemake(results, *args):
-    return run_snakemake(results, CONFIG, *args, cores=2, timeout=1200)
 
 
 @pytest.fixture(scope="module")
-def campaign(tmp_path_factory):
-    """The whole small campaign, then the report (which must not recompute anything)."""
-    results = tmp_path_factory.mktemp("campaign") / "results"
-    run = _snakemake(results)
-    assert run.returncode == 0, run.stderr[-4000:]
-    report = results / "report.html"
-    run = _snakemake(results, "--report", str(report))
-    assert run.returncode == 0, run.stderr[-4000:]
-    dry = _snakemake(results, "--dry-run")
-    assert "Nothing to be done" in dry.stdout + dry.stderr
-    return results
+def campaign(small_campaign):
+    """The whole small campaign and its report (tests/workflow/conftest.py)."""
+    return small_campaign
 
 
 def _check_units(ds):

@@ -11,6 +11,15 @@ def geometry_ids():
     return list(SAMPLES.index)
 
 
+# Resources for a cluster (threads, mem_mb, runtime in minutes), declared in each rule from the
+# benchmarks of the 120-geometry campaign on the default mesh (results/benchmarks/): mem_mb about
+# twice the largest max_rss, runtime ten times the longest wall time and at least 5 min. A job
+# killed for memory is retried (profiles/slurm: retries) with its request doubled at each attempt.
+def scaled(mem_mb):
+    """mem_mb of attempt 1, 2, ...: ``mem_mb`` times the attempt."""
+    return lambda wildcards, attempt: mem_mb * attempt
+
+
 # The optimum found on the surrogate is a real geometry: gid ``optimum``, whose kappa is only known
 # once the checkpoint ``optimum`` has written optimum.yaml. Its mesh, static, reduced and dnnm jobs
 # take that file as input (``kappa_source``), so Snakemake runs the checkpoint first and re-evaluates
@@ -40,6 +49,12 @@ def gid_of(kappa):
     """gid of the sample at exactly ``kappa`` (every reference ring is in the table)."""
     hit = SAMPLES[(SAMPLES[["kappa1", "kappa2", "kappa3"]] == list(kappa)).all(axis=1)]
     return hit.index[0]
+
+
+# The default ring: its static state drives the modal stage, whose resonance and the default ring's
+# stuck frequency (stuck_default) normalise every dnnm.nc. On a cluster its chain, the modal stage and
+# stuck_default form one job (group geometry_<default gid>); every other geometry's chain is a job.
+DEFAULT_GID = gid_of((0.0, 0.0, 0.0))
 
 
 def reference_gids():

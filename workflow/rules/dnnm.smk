@@ -1,6 +1,3 @@
-DEFAULT_GID = gid_of((0.0, 0.0, 0.0))
-
-
 rule stuck_default:
     input:
         reduced=f"{RESULTS}/geometry/{DEFAULT_GID}/reduced.nc",
@@ -8,6 +5,12 @@ rule stuck_default:
         resonance=f"{RESULTS}/modal/resonance.yaml",
     output:
         f"{RESULTS}/modal/stuck_default.yaml",
+    threads: 1
+    resources:
+        mem_mb=scaled(1000),
+        runtime=5,
+    group:
+        f"geometry_{DEFAULT_GID}"
     log:
         f"{RESULTS}/logs/stuck_default.log",
     benchmark:
@@ -28,6 +31,12 @@ rule dnnm:
         f"{RESULTS}/geometry/{{gid}}/dnnm.nc",
     params:
         kappa=kappa_of,
+    threads: 1
+    resources:
+        mem_mb=scaled(1000),
+        runtime=15,
+    group:
+        "geometry_{gid}"
     log:
         f"{RESULTS}/logs/dnnm/{{gid}}.log",
     benchmark:
@@ -49,6 +58,10 @@ rule backbone_figures:
                       caption="../report/energy_map_default.rst"),
     params:
         labels=list(reference_gids()),
+    threads: 1
+    resources:
+        mem_mb=scaled(600),
+        runtime=5,
     log:
         f"{RESULTS}/logs/backbone_figures.log",
     benchmark:

@@ -9,6 +9,10 @@ rule frf_levels:
         dnnm=f"{RESULTS}/geometry/{DEFAULT_GID}/dnnm.nc",
     output:
         f"{RESULTS}/frf/levels.yaml",
+    threads: 1
+    resources:
+        mem_mb=scaled(300),
+        runtime=5,
     log:
         f"{RESULTS}/logs/frf/levels.log",
     benchmark:
@@ -29,6 +33,10 @@ rule frf_curve:
         f"{RESULTS}/frf/{{gid}}/gamma_{{level}}.nc",
     wildcard_constraints:
         level=r"\d+",
+    threads: 1
+    resources:
+        mem_mb=scaled(1600),
+        runtime=5,
     log:
         f"{RESULTS}/logs/frf/{{gid}}_gamma_{{level}}.log",
     benchmark:
@@ -47,6 +55,10 @@ rule table3:
         csv=f"{RESULTS}/frf/table3.csv",
         html=report(f"{RESULTS}/tables/table3.html", category="Optimum vs default",
                     caption="../report/table3.rst"),
+    threads: 1
+    resources:
+        mem_mb=scaled(300),
+        runtime=5,
     log:
         f"{RESULTS}/logs/frf/table3.log",
     benchmark:
@@ -70,6 +82,10 @@ rule optimum_figures:
                         caption="../report/optimum_backbones_frf.rst"),
     params:
         labels=list(FRF_RINGS),
+    threads: 1
+    resources:
+        mem_mb=scaled(400),
+        runtime=5,
     log:
         f"{RESULTS}/logs/frf/optimum_figures.log",
     benchmark:

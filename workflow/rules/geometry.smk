@@ -5,6 +5,12 @@ rule mesh:
         f"{RESULTS}/geometry/{{gid}}/mesh.vtu",
     params:
         kappa=kappa_of,
+    threads: 1
+    resources:
+        mem_mb=scaled(500),
+        runtime=5,
+    group:
+        "geometry_{gid}"
     log:
         f"{RESULTS}/logs/mesh/{{gid}}.log",
     benchmark:

@@ -1,6 +1,6 @@
 rule modal:
     input:
-        static=lambda wildcards: f"{RESULTS}/geometry/{gid_of((0.0, 0.0, 0.0))}/static.nc",
+        static=f"{RESULTS}/geometry/{DEFAULT_GID}/static.nc",
     output:
         nd=f"{RESULTS}/modal/nd_diagram.nc",
         campbell=f"{RESULTS}/modal/campbell.nc",
@@ -12,6 +12,12 @@ rule modal:
         modes_png=report(f"{RESULTS}/figures/modes_target_nd.png", category="Modal analysis",
                          caption="../report/modes_target_nd.rst"),
         modes_vtu=directory(f"{RESULTS}/modal/modes"),
+    threads: 1
+    resources:
+        mem_mb=scaled(3000),
+        runtime=5,
+    group:
+        f"geometry_{DEFAULT_GID}"
     log:
         f"{RESULTS}/logs/modal.log",
     benchmark:

@@ -5,6 +5,12 @@ rule reduced:
         f"{RESULTS}/geometry/{{gid}}/reduced.nc",
     params:
         kappa=kappa_of,
+    threads: 1
+    resources:
+        mem_mb=scaled(1000),
+        runtime=5,
+    group:
+        "geometry_{gid}"
     log:
         f"{RESULTS}/logs/reduced/{{gid}}.log",
     benchmark:

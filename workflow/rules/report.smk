@@ -13,6 +13,10 @@ rule optimum_surrogate_check:
                     caption="../report/optimum_check_table.rst"),
         figure=report(f"{RESULTS}/figures/optimum_surrogate_check.png", category="Optimum vs default",
                       caption="../report/optimum_surrogate_check.rst"),
+    threads: 1
+    resources:
+        mem_mb=scaled(400),
+        runtime=5,
     log:
         f"{RESULTS}/logs/optimum_surrogate_check.log",
     benchmark:
@@ -34,6 +38,10 @@ rule paper_comparison:
         csv=f"{RESULTS}/tables/paper_comparison.csv",
         html=report(f"{RESULTS}/tables/paper_comparison.html", category="Comparison with the paper",
                     caption="../report/paper_comparison.rst"),
+    threads: 1
+    resources:
+        mem_mb=scaled(300),
+        runtime=5,
     log:
         f"{RESULTS}/logs/paper_comparison.log",
     benchmark:
@@ -59,6 +67,10 @@ rule report_tables:
                             caption="../report/sobol_global_table.rst"),
         sobol_local=report(f"{RESULTS}/tables/sobol_local.html", category="Sensitivity",
                            caption="../report/sobol_local_table.rst"),
+    threads: 1
+    resources:
+        mem_mb=scaled(300),
+        runtime=5,
     log:
         f"{RESULTS}/logs/report_tables.log",
     benchmark:

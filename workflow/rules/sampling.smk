@@ -1,6 +1,10 @@
 rule samples:
     output:
         f"{RESULTS}/samples.csv",
+    threads: 1
+    resources:
+        mem_mb=scaled(400),
+        runtime=5,
     log:
         f"{RESULTS}/logs/samples.log",
     benchmark:

@@ -6,6 +6,12 @@ rule static:
         vtu=f"{RESULTS}/geometry/{{gid}}/static.vtu",
     params:
         kappa=kappa_of,
+    threads: 1
+    resources:
+        mem_mb=scaled(600),
+        runtime=5,
+    group:
+        "geometry_{gid}"
     log:
         f"{RESULTS}/logs/static/{{gid}}.log",
     benchmark:
@@ -24,6 +30,10 @@ rule static_maps:
                caption="../report/static_contact_maps.rst"),
     params:
         labels=list(one_at_a_time_gids()),
+    threads: 1
+    resources:
+        mem_mb=scaled(600),
+        runtime=5,
     log:
         f"{RESULTS}/logs/static_maps.log",
     benchmark:

@@ -11,6 +11,10 @@ rule aggregate:
         f"{RESULTS}/campaign/dataset.nc",
     params:
         gids=geometry_ids(),
+    threads: 1
+    resources:
+        mem_mb=scaled(400),
+        runtime=5,
     log:
         f"{RESULTS}/logs/aggregate.log",
     benchmark:
@@ -26,6 +30,10 @@ rule kriging:
         f"{RESULTS}/campaign/dataset.nc",
     output:
         f"{RESULTS}/surrogate/kriging.nc",
+    threads: 1
+    resources:
+        mem_mb=scaled(600),
+        runtime=10,
     log:
         f"{RESULTS}/logs/kriging.log",
     benchmark:
@@ -48,6 +56,10 @@ rule validation:
                        caption="../report/fig13_predicted_vs_computed.rst"),
         cases=report(f"{RESULTS}/figures/fig13_validation_backbones.png", category="Surrogates",
                      caption="../report/fig13_validation_backbones.rst"),
+    threads: 1
+    resources:
+        mem_mb=scaled(500),
+        runtime=5,
     log:
         f"{RESULTS}/logs/validation.log",
     benchmark:
@@ -70,6 +82,10 @@ rule one_at_a_time:
                      caption="../report/fig15_kappa2.rst"),
         fig16=report(f"{RESULTS}/figures/fig16_kappa3.png", category="Design space",
                      caption="../report/fig16_kappa3.rst"),
+    threads: 1
+    resources:
+        mem_mb=scaled(500),
+        runtime=5,
     log:
         f"{RESULTS}/logs/one_at_a_time.log",
     benchmark:
@@ -89,6 +105,10 @@ checkpoint optimum:
         grid=f"{RESULTS}/surrogate/grid.nc",
         figure=report(f"{RESULTS}/figures/fig17_envelopes.png", category="Design space",
                       caption="../report/fig17_envelopes.rst"),
+    threads: 1
+    resources:
+        mem_mb=scaled(800),
+        runtime=5,
     log:
         f"{RESULTS}/logs/optimum.log",
     benchmark:

@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# `make test-cluster`: the test campaign (tests/config_small.yaml) on a real single-node SLURM of this
+# host, through profiles/slurm, and its arrays against a local run of the same configuration.
+#   1. installs Debian's slurm-wlm and munge when missing (root, apt);
+#   2. writes /etc/slurm/slurm.conf for this host (2 CPUs, no cgroups, no accounting): the plugin's job
+#      steps drop SLURM_CONF, so the configuration must be at the default path;
+#   3. starts munged, slurmctld and slurmd in the foreground of background shells, waits for the node
+#      to be idle, runs the campaign, compares, and on exit stops every daemon it started, by PID.
+# Usage: .ci/slurm/test_cluster.sh VENV_BIN WORKDIR
+set -euo pipefail
+BIN=$(realpath "$1")
+WORK=$(realpath -m "$2")
+REPO=$(cd "$(dirname "$0")/../.." && pwd)
+CONF=/etc/slurm/slurm.conf
+MARK="# ringdamper single-node test cluster"
+NODE=$(hostname -s)
+PIDS=()
+
+log() { printf '[test-cluster %s] %s\n' "$(date -u +%H:%M:%S)" "$*"; }
+
+stop_daemons() {
+    for pid in "${PIDS[@]}"; do
+        kill "$pid" 2>/dev/null || true
+    done
+    for pid in "${PIDS[@]}"; do
+        for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.2; done
+        kill -9 "$pid" 2>/dev/null || true
+    done
+    [ ${#PIDS[@]} -eq 0 ] || log "stopped daemons ${PIDS[*]}"
+}
+trap stop_daemons EXIT
+
+if ! command -v slurmctld >/dev/null || ! command -v munged >/dev/null; then
+    log "installing slurm-wlm and munge"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq slurm-wlm munge >/dev/null
+fi
+if pgrep -x slurmctld >/dev/null || pgrep -x slurmd >/dev/null; then
+    echo "a slurmctld or slurmd is already running (PIDs $(pgrep -x slurmctld) $(pgrep -x slurmd)): stop it first" >&2
+    exit 1
+fi
+if [ -e "$CONF" ] && ! grep -qx "$MARK" "$CONF"; then
+    echo "$CONF exists and was not written by this script: not overwriting it" >&2
+    exit 1
+fi
+
+STATE="$WORK/slurm"
+rm -rf "$STATE" && mkdir -p "$STATE/ctld" "$STATE/spool" "$STATE/log"
+MEM_MB=$(awk '/MemTotal/ {print int($2 / 1024 * 0.8)}' /proc/meminfo)
+cat > "$CONF" <<CONFEOF
+$MARK (written by .ci/slurm/test_cluster.sh)
+ClusterName=ringdamper
+SlurmctldHost=$NODE(127.0.0.1)
+SlurmUser=root
+AuthType=auth/munge
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+SelectType=select/cons_tres
+SelectTypeParameters=CR_Core_Memory
+StateSaveLocation=$STATE/ctld
+SlurmdSpoolDir=$STATE/spool
+SlurmctldPidFile=$STATE/slurmctld.pid
+SlurmdPidFile=$STATE/slurmd.pid
+SlurmctldLogFile=$STATE/log/slurmctld.log
+SlurmdLogFile=$STATE/log/slurmd.log
+ReturnToService=2
+MpiDefault=none
+NodeName=$NODE NodeAddr=127.0.0.1 CPUs=2 RealMemory=$MEM_MB State=UNKNOWN
+PartitionName=main Nodes=$NODE Default=YES MaxTime=INFINITE State=UP
+CONFEOF
+
+log "starting munged, slurmctld, slurmd"
+install -d -o munge -g munge -m 0755 /run/munge
+setpriv --reuid=munge --regid=munge --init-groups /usr/sbin/munged -F >"$STATE/log/munged.out" 2>&1 &
+PIDS+=($!)
+for _ in $(seq 50); do [ -S /run/munge/munge.socket.2 ] && break; sleep 0.2; done
+/usr/sbin/slurmctld -D -f "$CONF" >"$STATE/log/slurmctld.out" 2>&1 &
+PIDS+=($!)
+/usr/sbin/slurmd -D -f "$CONF" >"$STATE/log/slurmd.out" 2>&1 &
+PIDS+=($!)
+for i in $(seq 60); do
+    state=$(sinfo -h -n "$NODE" -o %T 2>/dev/null || true)
+    [ "$state" = idle ] && break
+    [ "$i" -lt 60 ] || { echo "node not idle after 60 s (state: '$state'); logs in $STATE/log" >&2; exit 1; }
+    sleep 1
+done
+log "node $NODE idle"
+
+SMK=("$BIN/python" -m snakemake --snakefile "$REPO/Snakefile" --directory "$REPO"
+     --configfile "$REPO/tests/config_small.yaml")
+cd "$REPO"
+start=$(date +%s)
+"${SMK[@]}" --workflow-profile profiles/slurm --config "results=$WORK/slurm_results" > "$WORK/slurm_run.log" 2>&1 \
+    || { tail -40 "$WORK/slurm_run.log"; exit 1; }
+log "SLURM run: $(( $(date +%s) - start )) s, $(grep -c 'submitted with SLURM jobid' "$WORK/slurm_run.log" || true) cluster jobs"
+start=$(date +%s)
+"${SMK[@]}" --workflow-profile profiles/default --config "results=$WORK/local_results" > "$WORK/local_run.log" 2>&1 \
+    || { tail -40 "$WORK/local_run.log"; exit 1; }
+log "local run: $(( $(date +%s) - start )) s"
+"$BIN/python" -m tools.compare_results "$WORK/slurm_results" "$WORK/local_results"

@@ -1,14 +1,36 @@
 """Predictor–corrector continuation: natural parameter (log α for the dNNM), pseudo-arc-length
 (excitation frequency for the forced response) and their combination (natural, then arc length
-past a fold in the parameter, :func:`natural_then_arclength`), after Allgower & Georg (2003).
+past a fold in the parameter, :func:`natural_then_arclength`), after Allgower & Georg,
+*Introduction to Numerical Continuation Methods* (2003), ch. 6 (step-length adaptation).
 
-Common rules: tangent predictor, Newton corrector reusing the last factorisation while it
-contracts (:func:`ringdamper.nonlinear.newton.newton`), step grown ×1.5 when the corrector's effort
-(Jacobians + chord iterations / 12) is at most 1.5 and halved above 4, halved on failure, and a
-corrector that moves farther than its own predictor step (or than ``jump_floor`` in the scaled
-norm) is rejected as a branch jump; ``jump_mask`` restricts that test to the unknowns that
-identify the branch (the EPMC leaves out the mean values, which move freely where the last
-contact holding a rigid-body motion lets go). Failures never raise: they end the run with a status.
+Common rules. Tangent predictor, Newton corrector reusing the last factorisation while it
+contracts (:func:`ringdamper.nonlinear.newton.newton`). Every accepted point gets a fresh
+Jacobian and its own unit tangent ``t``, measured in a scaled metric ``u`` (unknowns over their
+scales, see each driver). A corrected point ``u₁`` reached from the trusted point ``u₀`` (tangent
+``t₀``) is *trusted* only if the geometry of the step fits one smooth branch
+(:func:`_step_geometry`, :func:`_untrusted`):
+
+* **turn** ``θ = ∠(t₀, t₁)`` at most ``max_angle`` (curvature test, default twice the nominal
+  turn :attr:`StepControl.turn`);
+* **distance from the predictor**: the chord ``c = u₁ − u₀`` makes the angle ``φ₀ = ∠(c, t₀)``
+  with the predictor direction (``tan φ₀`` = distance of the corrector from the predictor / step
+  for the arc-length corrector), at most ``max_angle``;
+* **chord–tangent consistency**: on one smooth (or cornered) branch ``φ₀ + φ₁ ≈ θ`` (``φ₁ =
+  ∠(c, t₁)``; equality for a plane arc or a corner), whereas a corrector that lands on another
+  branch gives ``φ₀ + φ₁ ≫ θ`` (a parallel branch: ``θ ≈ 0``, ``φ₀ = φ₁ = atan(distance/step)``);
+  rejected when ``φ₀ + φ₁ − θ > max_angle / 2``, at every step size.
+
+A rejected step (no convergence, or untrusted) is halved from the last trusted point (bisection)
+until it is trusted or falls below :attr:`StepControl.minimum`, where the run stops with a
+status. The turn test is waived once the step is below ``corner × minimum`` (the branches of
+Jenkins elements are piecewise smooth: the tangent turns by a finite angle at a stick–slip
+transition, whatever the step), the consistency test never. After an accepted step the step is
+multiplied by ``min(grow, turn/θ)`` when the corrector was cheap (effort ≤ ``easy``, see
+:func:`newton`), by ``min(1, turn/θ)`` otherwise and halved when it was hard (effort ≥
+``hard``), never below half (so the tangent turns by about ``turn`` per step, whatever the
+initial and maximum steps). ``jump_mask`` restricts the geometry to the unknowns that identify
+the branch (the EPMC leaves out the mean values, which move freely where the last contact
+holding a rigid-body motion lets go). Failures never raise: they end the run with a status.
 """
 from __future__ import annotations
 
@@ -33,7 +55,9 @@ class Status(IntEnum):
 
 @dataclass
 class StepControl:
-    """Step-size rules (in the continuation parameter or arc length)."""
+    """Step-size rules (in the continuation parameter or arc length). ``turn`` [rad]: nominal
+    angle between the tangents of successive points (the step follows the curvature); a step
+    whose tangent turns by more than twice that is rejected and halved (module docstring)."""
 
     initial: float
     minimum: float
@@ -41,16 +65,28 @@ class StepControl:
     grow: float = 1.5
     easy: float = 1.5        # corrector effort (:attr:`NewtonResult.effort`) below which ds grows
     hard: float = 4.0        # effort above which ds shrinks
-    jump_floor: float = 0.05
+    turn: float = 0.1
 
-    def adapt(self, ds: float, res) -> float:
+    def __post_init__(self):
+        if not 0 < self.minimum <= self.initial:
+            raise ValueError(f"StepControl: need 0 < minimum <= initial, got minimum="
+                             f"{self.minimum}, initial={self.initial}")
+        if self.maximum < self.minimum:
+            raise ValueError(f"StepControl: maximum={self.maximum} is below minimum="
+                             f"{self.minimum}")
+        if not 0 < self.turn < np.pi / 4:
+            raise ValueError(f"StepControl: turn must lie in (0, pi/4) rad, got {self.turn}")
+
+    def adapt(self, ds: float, res, turn: float = 0.0) -> float:
         """New step from the corrector's effort (Jacobians + iterations / chord budget, see
-        :func:`ringdamper.nonlinear.newton.newton`): cheap chord iterations count little."""
-        if res.effort <= self.easy:
-            ds *= self.grow
-        elif res.effort >= self.hard:
-            ds *= 0.5
-        return min(ds, self.maximum)
+        :func:`ringdamper.nonlinear.newton.newton`: cheap chord iterations count little) and the
+        tangent turn ``turn`` [rad] of the accepted step."""
+        factor = self.grow if res.effort <= self.easy else 1.0
+        if res.effort >= self.hard:
+            factor = 0.5
+        if turn > 0:
+            factor = min(factor, self.turn / turn)
+        return min(ds * max(factor, 0.5), self.maximum)
 
 
 @dataclass
@@ -73,22 +109,48 @@ class NaturalResult:
     branch: list = field(default_factory=list)
 
 
-def _moved(a, b, sc, mask=None):
-    """Largest scaled difference ``max |a − b| / sc`` over the unknowns ``mask`` (default all)."""
+def _angle(a: np.ndarray, b: np.ndarray) -> float:
+    """Angle [rad] between two vectors (π/2 if one vanishes)."""
+    na, nb = np.linalg.norm(a), np.linalg.norm(b)
+    if na == 0 or nb == 0:
+        return np.pi / 2
+    return float(np.arccos(np.clip(a @ b / (na * nb), -1.0, 1.0)))
+
+
+def _step_geometry(t0, t1, chord, mask=None):
+    """Turn ``θ = ∠(t₀, t₁)`` and the chord's angles ``φ₀ = ∠(c, t₀)``, ``φ₁ = ∠(c, t₁)`` of a
+    step, over the unknowns ``mask`` (default all)."""
     keep = slice(None) if mask is None else mask
-    return np.max(np.abs(a - b)[keep] / sc[keep])
+    t0, t1, chord = t0[keep], t1[keep], chord[keep]
+    return _angle(t0, t1), _angle(chord, t0), _angle(chord, t1)
 
 
-def _blocked(z_new, z_pred, z_old, scale, floor, mask=None):
-    sc = scale(z_old)
-    return _moved(z_new, z_pred, sc, mask) > max(_moved(z_pred, z_old, sc, mask), floor)
+def _untrusted(geometry, max_angle: float, corner: bool) -> str:
+    """Why the step of ``geometry`` (:func:`_step_geometry`) is not trusted ("" if it is);
+    ``corner``: the step is small enough for the turn test to be waived."""
+    turn, ahead, behind = geometry
+    if ahead + behind - turn > 0.5 * max_angle:
+        return (f"corrector jumped (possible branch switch): chord at {ahead:.3g} and "
+                f"{behind:.3g} rad from the end tangents, which turn by {turn:.3g} rad")
+    if corner:
+        return ""
+    if ahead > max_angle:
+        return f"corrector far from the predictor ({ahead:.3g} rad off the tangent)"
+    if turn > max_angle:
+        return f"tangent turned by {turn:.3g} rad"
+    return ""
+
+
+def _unit(v):
+    return v / np.linalg.norm(v)
 
 
 def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
             scale: Callable, steps: StepControl, tol: float, max_iter: int,
             accept: Callable | None = None, s_start: float | None = None,
             on_failure: Callable[[], bool] | None = None,
-            jump_mask: np.ndarray | None = None) -> NaturalResult:
+            jump_mask: np.ndarray | None = None, max_angle: float | None = None,
+            corner: float = 100.0) -> NaturalResult:
     """Continuation in the scalar parameter ``s`` from ``s_start`` (default ``grid[0]``; ``z0``
     is the guess there) over the increasing ``grid``, landing exactly on every grid value (so grid
     outputs are converged solutions, not interpolants).
@@ -97,7 +159,12 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
     ``accept(z, payload)`` is called on every accepted point (e.g. to update a gauge);
     ``on_failure()`` after a failed corrector: if it returns True the problem has changed (e.g. a
     rigid-body direction was pinned) and the same step is tried again before it is halved.
-    ``jump_mask``: unknowns the branch-jump test looks at (default all).
+    The step geometry (module docstring) is measured on ``u = [z/(√n·scale(z₀)), s]`` with the
+    tangent ``(dz/ds, 1)`` of every accepted point; in addition a step is rejected when the
+    tangent oriented along the chord points to decreasing ``s`` (a fold in ``s`` between the two
+    points, which natural continuation cannot pass). ``jump_mask``: unknowns the geometry looks
+    at (default all); ``max_angle`` (default ``2·steps.turn``) and ``corner`` as in
+    :func:`arclength`.
     """
     grid = np.asarray(grid, float)
     n = grid.size
@@ -109,7 +176,11 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
     if not res.converged:
         status[0], reason[0] = Status.NO_CONVERGENCE, f"start point: {res.reason}"
         return out
-    z, last = res.z, res
+    max_angle = 2 * steps.turn if max_angle is None else max_angle
+    mask = None if jump_mask is None else np.r_[jump_mask, True]
+    root_n = np.sqrt(z0.size)
+    z = res.z
+    fac, tangent = _natural_tangent(fun, dfun_ds, z, s)
     out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
     gi = 0
     if s == grid[0]:
@@ -122,31 +193,47 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
         s_t = min(s + ds, grid[gi])
         on_grid = s_t >= grid[gi] - 1e-12 * max(1.0, abs(grid[gi]))
         s_t = grid[gi] if on_grid else s_t
-        tangent = last.factorization.solve(-dfun_ds(z, s))
         z_pred = z + (s_t - s) * tangent
         res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale, tol, max_iter,
-                     factorization=last.factorization)
-        if res.converged and not _blocked(res.z, z_pred, z, scale, steps.jump_floor, jump_mask):
-            s, z, last = s_t, res.z, res
+                     factorization=fac)
+        why = res.reason
+        if res.converged:
+            fac_t, tangent_t = _natural_tangent(fun, dfun_ds, res.z, s_t)
+            w = root_n * scale(z)
+            chord = np.r_[(res.z - z) / w, s_t - s]
+            t0, t1 = _unit(np.r_[tangent / w, 1.0]), _unit(np.r_[tangent_t / w, 1.0])
+            if t1 @ chord < 0:
+                t1 = -t1
+            geometry = _step_geometry(t0, t1, chord, mask)
+            why = ("fold in s between the points" if t1[-1] <= 0 else
+                   _untrusted(geometry, max_angle, s_t - s <= corner * steps.minimum))
+        if not why:
+            s, z, fac, tangent = s_t, res.z, fac_t, tangent_t
             out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
             if on_grid:
                 _record(out, gi, s, res, accept)
                 gi += 1
             elif accept is not None:
                 accept(z, res.payload)
-            ds = steps.adapt(ds, res)
+            ds = steps.adapt(ds, res, geometry[0])
             continue
         if on_failure is not None and on_failure():
             continue
         ds = 0.5 * (s_t - s)
         if ds < steps.minimum:
-            why = res.reason if not res.converged else "corrector jumped (possible branch switch)"
             for k in range(gi, n):
                 status[k] = Status.NO_CONVERGENCE if k == gi else Status.NOT_REACHED
                 reason[k] = (f"step below minimum at s={s:.6g}: {why}" if k == gi
                              else f"continuation stopped at s={s:.6g}")
             break
     return out
+
+
+def _natural_tangent(fun, dfun_ds, z, s):
+    """Factorised Jacobian at ``(z, s)`` and the tangent ``dz/ds = −J⁻¹ ∂r/∂s``."""
+    _, J, trivial, n_core, _ = fun(z, s, True)
+    fac = Factorization(J, trivial, n_core)
+    return fac, fac.solve(-dfun_ds(z, s))
 
 
 def _record(out: NaturalResult, i: int, s: float, res: NewtonResult, accept):
@@ -167,7 +254,7 @@ class ArclengthResult:
 
 def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.ndarray,
               steps: StepControl, tol: float, max_iter: int, stop: Callable[[np.ndarray], bool],
-              max_points: int, max_angle: float = np.pi / 4, corner: float = 100.0,
+              max_points: int, max_angle: float | None = None, corner: float = 100.0,
               rescale: Callable | None = None, accept: Callable | None = None,
               on_failure: Callable[[], bool] | None = None,
               jump_mask: np.ndarray | None = None) -> ArclengthResult:
@@ -175,42 +262,56 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
 
     ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)``, ``J`` of shape ``(n−1, n)``; ``z0`` a
     solution; ``direction`` the initial orientation; ``scale`` the variable scaling (arc length is
-    measured on ``u = z / scale``; the corrector stays on the hyperplane normal to the tangent).
-    The first tangent comes from the Jacobian, the next ones are secants of accepted steps.
-    A step is rejected if the tangent turns by more than ``max_angle``, unless the step has
-    already been refined below ``corner × steps.minimum``: the turn is then a corner of the
-    non-smooth branch (e.g. the stick–slip kink of a Jenkins element). Stops with status 0 when
-    ``stop(z)`` is true. ``rescale(z, scale) -> scale`` may update the scaling after every
-    accepted point (the tangent is carried over in unscaled form); ``accept(z, payload)`` is
-    called on the start and every accepted point (history updates). ``scales`` in the result holds
-    the scaling in force at every point. ``on_failure()`` and ``jump_mask`` as in
-    :func:`natural`.
+    measured on ``u = z / scale``; the corrector stays on the hyperplane through the predictor
+    normal to the tangent). Every accepted point gets its tangent from a fresh Jacobian (the null
+    vector of ``J``, oriented along the chord of the step). A step is trusted by the geometry
+    tests of the module docstring (``max_angle``, default ``2·steps.turn``; the turn test is
+    waived below ``corner × steps.minimum``, the chord–tangent consistency test never) and
+    otherwise halved from the last trusted point. Stops with status 0 when ``stop(z)`` is true.
+    ``rescale(z, scale) -> scale`` may update the scaling after every accepted point (the tangent
+    is carried over in unscaled form); ``accept(z, payload)`` is called on the start and every
+    accepted point (history updates). ``tangents`` and ``scales`` in the result hold the unit
+    tangent (in ``u``) and the scaling in force at every point. ``on_failure()`` and
+    ``jump_mask`` as in :func:`natural`.
     """
+    max_angle = 2 * steps.turn if max_angle is None else max_angle
     r0, J0, trivial0, n_core0, payload0 = fun(z0, True)
     if accept is not None:
         accept(z0, payload0)
-    t = _tangent(J0, trivial0, n_core0, direction / scale, scale)
+    last_fac, t = _tangent(J0, trivial0, n_core0, direction / scale, scale)
     pts, tans, scales = [ContinuationPoint(0.0, z0, payload0, 0)], [t], [scale]
     z, s, ds = z0, 0.0, steps.initial
-    last_fac = None
-    while len(pts) < max_points:
-        zp = z + ds * t * scale
-        plane = t / scale
 
-        def bordered(zz, jac, zp=zp, plane=plane):
+    def step(d, ds, fac):
+        """Corrector from ``z + ds·d`` on the hyperplane normal to ``d`` (scaled), and the tests
+        against the trusted tangent ``t``: ``(result, tangent, factorisation, turn, why)``."""
+        zp, plane = z + ds * d * scale, d / scale
+
+        def bordered(zz, jac):
             r, J, trivial, n_core, payload = fun(zz, jac)
             Jb = np.vstack([J, plane]) if jac else None
             return np.r_[r, plane @ (zz - zp)], Jb, trivial, n_core, payload
 
-        res = newton(bordered, zp, lambda _: scale, tol, max_iter, factorization=last_fac)
-        ok = res.converged and not _blocked(res.z, zp, z, lambda _: scale, steps.jump_floor,
-                                            jump_mask)
-        if ok:                                       # secant tangent of the accepted step
-            x = (res.z - z) / scale
-            t_new = x / np.linalg.norm(x)
-            ok = np.dot(t_new, t) >= np.cos(max_angle) or ds <= corner * steps.minimum
-        if ok:
-            z, t, s, last_fac = res.z, t_new, s + ds, res.factorization
+        res = newton(bordered, zp, lambda _: scale, tol, max_iter, factorization=fac)
+        if not res.converged:
+            return res, None, None, 0.0, res.reason
+        chord = (res.z - z) / scale
+        _, J1, trivial1, n_core1, _ = fun(res.z, True)
+        fac1, t1 = _tangent(J1, trivial1, n_core1, chord, scale)
+        geometry = _step_geometry(t, t1, chord, jump_mask)
+        why = _untrusted(geometry, max_angle, ds <= corner * steps.minimum)
+        if not why and _angle(-t, chord) <= np.pi / 4:
+            why = "corrector went back along the branch"
+        return res, t1, fac1, geometry[0], why
+
+    while len(pts) < max_points:
+        res, t1, fac1, turn, why = step(t, ds, last_fac)
+        if why and ds <= corner * steps.minimum:
+            turned = _turn_corner(step, fun, z, t, ds, corner * steps.minimum, scale)
+            if turned:
+                ds, (res, t1, fac1, turn, why) = turned
+        if not why:
+            z, t, s, last_fac = res.z, t1, s + ds, fac1
             pts.append(ContinuationPoint(s, z, res.payload, res.iterations))
             tans.append(t)
             scales.append(scale)
@@ -220,26 +321,43 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
                 return ArclengthResult(pts, tans, scales, Status.CONVERGED, "")
             if rescale is not None:
                 new = rescale(z, scale)
-                t = t * scale / new
-                t, scale = t / np.linalg.norm(t), new
-            ds = steps.adapt(ds, res)
+                t, scale = _unit(t * scale / new), new
+            ds = steps.adapt(ds, res, turn)
             continue
         if on_failure is not None and on_failure():
             continue
         ds *= 0.5
         if ds < steps.minimum:
-            why = res.reason if not res.converged else "tangent turned or corrector jumped"
             return ArclengthResult(pts, tans, scales, Status.NO_CONVERGENCE,
                                    f"step below minimum: {why}")
     return ArclengthResult(pts, tans, scales, Status.MAX_POINTS, f"{max_points} points reached")
 
 
+def _turn_corner(step, fun, z, t, ds, largest, scale):
+    """Past a corner of a piecewise-smooth branch where it turns back (by more than 90°), the
+    hyperplane normal to the incoming tangent ``t`` misses the outgoing branch. Its direction is
+    the null vector of the Jacobian just past the corner (at the predictor ``z + ds·t``); both
+    orientations are tried as predictor directions with steps ``ds``, ``4·ds``, … up to
+    ``largest``; each must pass :func:`arclength`'s tests (and not lead back along the incoming
+    branch). Returns ``step``'s tuple, or None."""
+    _, J, trivial, n_core, _ = fun(z + ds * t * scale, True)
+    fac, ahead = _tangent(J, trivial, n_core, t, scale)
+    sizes = [ds * 4.0 ** k for k in range(int(np.log(largest / ds) / np.log(4.0)) + 1)]
+    for size in sizes:
+        for d in (ahead, -ahead):
+            trial = step(d, size, fac)
+            if not trial[-1]:
+                return size, trial
+    return None
+
+
 def _tangent(J, trivial, n_core, direction_u, scale):
-    """Unit tangent in scaled variables: ``J (scale·t) = 0`` oriented along ``direction_u``."""
+    """Factorisation of ``J`` bordered by ``direction_u / scale`` and the unit tangent in scaled
+    variables: ``J (scale·t) = 0``, oriented along ``direction_u``."""
     e = np.zeros(J.shape[1])
     e[-1] = 1.0
-    x = Factorization(np.vstack([J, direction_u / scale]), trivial, n_core).solve(e) / scale
-    return x / np.linalg.norm(x)
+    fac = Factorization(np.vstack([J, direction_u / scale]), trivial, n_core)
+    return fac, _unit(fac.solve(e) / scale)
 
 
 def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
@@ -247,17 +365,22 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
                            accept: Callable | None = None, s_start: float | None = None,
                            on_failure: Callable[[], bool] | None = None,
                            jump_mask: np.ndarray | None = None,
-                           max_points: int = 400) -> NaturalResult:
+                           max_points: int | None = None) -> NaturalResult:
     """:func:`natural`, and where it stops, pseudo-arc-length continuation of ``r(z, s) = 0`` in
     ``x = [z, s]`` from its last accepted point, oriented towards increasing ``s``: it follows the
     branch through folds in ``s`` (where natural continuation must stop). Each remaining grid
     value is solved exactly, at fixed ``s``, from the secant interpolant between the two branch
     points that first bracket it (the first crossing along the branch; after a fold the branch
-    may cross a value three times), and accepted only if the solution stays within the bracket's
-    distance of the interpolant (no branch jump). Points keep statuses and reasons as in
-    :func:`natural`; ``branch`` holds every accepted point of both parts (``s`` then not
-    monotone). Arc length is measured on ``[z/(√n·scale(z)), s]``: the RMS relative change of
-    the unknowns and the change of ``s`` weigh alike."""
+    may cross a value three times); the solution is trusted only if it fits the bracket (the
+    geometry tests of the module docstring on both halves of the bracket), otherwise the bracket
+    is bisected on the branch (a corrector on the hyperplane normal to the bracket's chord
+    through its midpoint) and the solve repeated from the half that brackets the value, down to
+    ``steps.minimum``. Points keep statuses and reasons as in :func:`natural`; ``branch`` holds
+    every accepted point of both parts (``s`` then not monotone). Arc length is measured on
+    ``[z/(√n·scale(z)), s]``: the RMS relative change of the unknowns and the change of ``s``
+    weigh alike. ``max_points`` bounds the arc-length points (default ``400·max(1, 0.5 / steps.maximum)``, so
+    that a smaller maximum step does not run out of points)."""
+    grid = np.asarray(grid, float)
     out = natural(fun, dfun_ds, z0, grid, scale, steps, tol, max_iter, accept=accept,
                   s_start=s_start, on_failure=on_failure, jump_mask=jump_mask)
     todo = np.flatnonzero(out.status == Status.NO_CONVERGENCE)
@@ -265,8 +388,13 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
         return out
     k0 = int(todo[0])
     first = out.branch[-1]
+    if max_points is None:
+        max_points = int(400 * max(1.0, 0.5 / steps.maximum))
     n = first.z.size
     root_n = np.sqrt(n)
+    mask = None if jump_mask is None else np.r_[jump_mask, True]
+    keep = slice(None) if mask is None else mask
+    bracket_fit = 0.25
 
     def fun_x(x, jac):
         r, J, trivial, n_core, payload = fun(x[:-1], x[-1], jac)
@@ -276,6 +404,49 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
     def rescale(x, _previous=None):
         """Arc-length scaling at ``x`` (the previous scaling is not needed)."""
         return np.r_[root_n * scale(x[:-1]), 1.0]
+
+    def bisect(xa, xb, sc):
+        """Branch point between ``xa`` and ``xb``: corrector on the hyperplane normal to their
+        chord through its midpoint (None if it fails or leaves the bracket)."""
+        chord = (xb - xa) / sc
+        plane, mid = chord / sc, 0.5 * (xa + xb)
+
+        def bordered(xx, jac):
+            r, J, trivial, n_core, payload = fun_x(xx, jac)
+            Jb = np.vstack([J, plane]) if jac else None
+            return np.r_[r, plane @ (xx - mid)], Jb, trivial, n_core, payload
+
+        res = newton(bordered, mid, lambda _: sc, tol, max_iter)
+        ok = res.converged and np.linalg.norm((res.z - mid) / sc) <= np.linalg.norm(chord)
+        return res.z if ok else None
+
+    def solve_grid(sk, xa, xb):
+        """Grid value ``sk`` between the branch points ``xa``, ``xb``: ``(NewtonResult, "")``
+        or ``(None, why)``. Trusted when the solution lies within ``bracket_fit`` times the
+        bracket's length of the secant interpolant (an arc that turns by θ ≤ ``max_angle``
+        stays within θ/8 of its chord)."""
+        sc = rescale(xa)
+        while True:
+            w = (sk - xa[-1]) / (xb[-1] - xa[-1])
+            guess = (1 - w) * xa + w * xb
+            res = newton(lambda zz, jj: fun(zz, sk, jj), guess[:-1], scale, tol, max_iter)
+            length = np.linalg.norm(((xb - xa) / sc)[keep])
+            if res.converged:
+                off = np.linalg.norm(((np.r_[res.z, sk] - guess) / sc)[keep])
+                if off <= bracket_fit * length:
+                    return res, ""
+                why = f"solution {off / length:.3g} bracket lengths off the secant"
+            else:
+                why = res.reason
+            if length < steps.minimum:
+                return None, f"re-solve at grid s={sk:.6g}: {why}"
+            xm = bisect(xa, xb, sc)
+            if xm is None:
+                return None, f"re-solve at grid s={sk:.6g}: bisection of the bracket failed"
+            if (xm[-1] - sk) * (xa[-1] - sk) <= 0:      # the first half brackets sk
+                xb = xm
+            else:
+                xa = xm
 
     nxt = [k0]
     prev = [np.r_[first.z, first.s]]
@@ -291,15 +462,8 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
         xa = prev[0]
         while nxt[0] < grid.size and xa[-1] < grid[nxt[0]] <= x[-1]:
             k, sk = nxt[0], grid[nxt[0]]
-            w = (sk - xa[-1]) / (x[-1] - xa[-1])
-            guess = (1 - w) * xa[:-1] + w * x[:-1]
-            res = newton(lambda zz, jj: fun(zz, sk, jj), guess, scale, tol, max_iter)
-            sc = scale(guess)
-            near = _moved(res.z, guess, sc, jump_mask) <= max(
-                _moved(x[:-1], xa[:-1], sc, jump_mask), steps.jump_floor)
-            if not (res.converged and near):
-                why[0] = (f"re-solve at grid s={sk:.6g}: "
-                          + (res.reason if not res.converged else "jumped off the branch"))
+            res, why[0] = solve_grid(sk, xa, x)
+            if res is None:
                 nxt[0] = grid.size                           # stop; statuses set below
                 break
             _record(out, k, sk, res, None)
@@ -311,8 +475,7 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
     direction[-1] = 1.0
     run = arclength(fun_x, x0, direction, rescale(x0), steps, tol, max_iter,
                     stop=lambda x: nxt[0] >= grid.size, max_points=max_points,
-                    rescale=rescale, accept=on_grid, on_failure=on_failure,
-                    jump_mask=None if jump_mask is None else np.r_[jump_mask, True])
+                    rescale=rescale, accept=on_grid, on_failure=on_failure, jump_mask=mask)
     unfilled = [j for j in range(k0, grid.size) if out.points[j] is None]
     for j in unfilled:
         out.status[j] = Status.NO_CONVERGENCE if j == unfilled[0] else Status.NOT_REACHED

@@ -1,0 +1,120 @@
+"""Randomised family for the continuation drivers (``natural_then_arclength`` with its
+``arclength`` part): 200 seeded spring–mass chains with Jenkins elements (``systems.jenkins_chain``:
+1–5 masses, 1–3 elements, strong, non-proportional friction whose EPMC backbones fold in α, often
+twice, and turn at stick–slip corners). Every backbone traced with the default steps must be the
+one traced with tiny steps (maximum step 0.05 instead of 0.5, nominal tangent turn 0.05 instead
+of 0.1 rad): same status at every grid amplitude and, where converged, the same ω (relative 1e-4),
+ζ (absolute 1e-4) and contact-state norm (relative 1e-3). A jump to another branch changes these
+by 1e-2 or more; the solver tolerance leaves about 1e-5. Runs that stop are allowed only with a
+status, identically in both, and on at most 3 % of the family.
+"""
+from functools import lru_cache
+
+import numpy as np
+import pytest
+
+from ringdamper.nonlinear.continuation import Status, StepControl
+from ringdamper.nonlinear.epmc import epmc, linear_limit
+from ringdamper.nonlinear.friction import FrictionContacts
+from ringdamper.nonlinear.structure import Structure
+
+from .systems import jenkins_chain
+
+SEEDS = range(200)
+TINY = StepControl(initial=0.05, minimum=1e-4, maximum=0.05, turn=0.05)
+OPTIONS = dict(H=1, nt=64, tol=1e-5)
+
+
+def chain_grid(st, c, lo=-0.15, hi=0.65, n=6):
+    """Amplitudes from just below the first slip (``linear_limit`` of the stuck mode) to 10^hi
+    times it, log-spaced: the range where the family's backbones fold."""
+    _, phi = st.stuck_modes(c.stuck_stiffness().ravel())
+    return linear_limit(st, c, phi[:, 0]) * np.logspace(lo, hi, n)
+
+
+def state_norm(bb):
+    return np.linalg.norm(bb.d.reshape(len(bb.alpha), -1), axis=1)
+
+
+def branch_difference(a, b) -> str:
+    """Why the backbones ``a`` and ``b`` on the same grid are not the same branch ("" if they
+    are)."""
+    if not np.array_equal(a.status, b.status):
+        return f"statuses {a.status} and {b.status}"
+    ok = a.status == Status.CONVERGED
+    d_omega = np.max(np.abs(a.omega - b.omega)[ok] / b.omega[ok], initial=0.0)
+    d_zeta = np.max(np.abs(a.zeta - b.zeta)[ok], initial=0.0)
+    d_state = np.max((np.abs(state_norm(a) - state_norm(b)) / state_norm(b))[ok], initial=0.0)
+    if d_omega > 1e-4 or d_zeta > 1e-4 or d_state > 1e-3:
+        return f"dω/ω {d_omega:.2e}, dζ {d_zeta:.2e}, d|state| {d_state:.2e}"
+    return ""
+
+
+def test_default_steps_trace_the_tiny_step_branch_on_200_chains():
+    jumps, stopped = [], []
+    for seed in SEEDS:
+        st, c = jenkins_chain(seed)
+        alpha = chain_grid(st, c)
+        default = epmc(st, c, alpha, **OPTIONS)
+        reference = epmc(st, c, alpha, steps=TINY, **OPTIONS)
+        why = branch_difference(default, reference)
+        if why:
+            jumps.append(f"seed {seed}: {why}")
+        elif np.any(default.status != Status.CONVERGED):
+            stopped.append(seed)
+    assert not jumps, "\n".join(jumps)
+    assert len(stopped) <= 0.03 * len(SEEDS), stopped
+
+
+@lru_cache(maxsize=1)
+def issue_chain():
+    """The 3-DoF chain whose default arc-length steps used to cross a tight fold in α onto a
+    branch of higher frequency (ω 0.997 → 1.104) and walk back to α ≈ 1e-45."""
+    ki = np.array([0.5, 0.6, 1.1, 0.8])
+    M = np.diag([1.5, 1.2, 1.7])
+    K = np.diag(ki[:-1] + ki[1:]) - np.diag(ki[1:-1], -1) - np.diag(ki[1:-1], 1)
+    w1, w2 = np.array([1, 0, 0.]), np.array([-1, 1, 0.])
+    B = np.array([0 * w1, w1, 0 * w1, 0 * w2, w2, 0 * w2])
+    c = FrictionContacts(kn=[1., 1.], kt=[24., 16.], mu=1.0, N0=[0.6, 1.8], gap=0.0)
+    st = Structure.real(M, K, B, response=np.array([0, 0, 1.]), force=np.array([0, 1, 0.]), H=1)
+    return st, c
+
+
+ISSUE_GRID = 10 ** np.arange(-1.5, 1.51, 0.25)
+
+
+@lru_cache(maxsize=1)
+def issue_reference():
+    st, c = issue_chain()
+    return epmc(st, c, ISSUE_GRID, H=1, nt=128, tol=1e-8, steps=TINY)
+
+
+@pytest.mark.parametrize("steps", [None, StepControl(0.05, 1e-4, 0.05), StepControl(0.01, 1e-4, 0.01),
+                                   StepControl(0.5, 1e-4, 2.0)],
+                         ids=["default", "max0.05", "max0.01", "max2"])
+def test_every_step_setting_gives_the_same_branch(steps):
+    """The chain that jumped: every step setting reaches every grid amplitude on the branch that
+    folds twice in α (up to log α ≈ −0.10, back to −0.22, up again), the one traced with tiny
+    steps."""
+    st, c = issue_chain()
+    alpha = ISSUE_GRID
+    reference = issue_reference()
+    bb = epmc(st, c, alpha, H=1, nt=128, tol=1e-8, steps=steps)
+    assert np.all(reference.status == Status.CONVERGED)
+    assert branch_difference(bb, reference) == ""
+    a = bb.branch[:, 0]
+    assert a.min() >= alpha[0] * (1 - 1e-12)                      # never walked back
+    assert np.any(np.diff(a) < 0)                                   # the folds were followed
+    assert bb.omega[6] == pytest.approx(0.6835, abs=1e-4)           # past the folds, slipping
+
+
+@pytest.mark.parametrize("seed", [1, 3, 5, 19, 28])
+def test_step_settings_agree_on_folding_chains(seed):
+    """Chains of the family whose backbones fold (and stopped the old driver): a large and a
+    small maximum step give the branch of the default steps."""
+    st, c = jenkins_chain(seed)
+    alpha = chain_grid(st, c)
+    default = epmc(st, c, alpha, **OPTIONS)
+    assert np.all(default.status == Status.CONVERGED)
+    for steps in (StepControl(0.5, 1e-4, 2.0), StepControl(0.02, 1e-4, 0.02)):
+        assert branch_difference(epmc(st, c, alpha, steps=steps, **OPTIONS), default) == ""

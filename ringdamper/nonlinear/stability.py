@@ -24,6 +24,14 @@ so they are condensed onto the contact at ``λ = 0`` with their exact receptance
 residual flexibility ``G``, positive because ``ω_r > hω``, as in the condensed harmonic balance);
 the contact stiffness the kept modes see is then ``K_eff = (I + K_c G)⁻¹ K_c``. (Condensing modes
 *below* a harmonic as well would add negative flexibility and spurious real exponents.)
+
+Gauged rigid-body directions. Where the condensed HBM holds a free rigid-body direction of the ring
+by its gauge (:mod:`ringdamper.nonlinear.condensed`: the mean position pinned, the unbalanced mean
+force reported as drift), the solution is one of the held system, and so is its stability: those
+directions are removed from the Hill problem. Otherwise their mean position, whose net contact
+stiffness can be slightly negative there, contributes a small real exponent (≈ 0.02 1/s at
+5.8e3 rad/s on the default ring) that states the drift already reported, not an instability of the
+vibration.
 The linearisation of the hysteretic contact force by its AFT
 Jacobian is the usual approximation of Hill's method for friction (Krack & Gross 2019, *Harmonic
 Balance for Nonlinear Vibration Problems*, §5).
@@ -60,7 +68,8 @@ def modal_hill_matrices(model, ev, omega: float, band: float = BAND):
     CondensedHBM`, evaluation ``ev`` with its full AFT Jacobian) on the modes kept explicit
     (``ω_r ≤ (H + band)·ω``), slots ``[η_0 | a_1, b_1 | … | a_H, b_H]`` (``η_h = a_h − i b_h``):
     ``J = ⊕_h real(diag(z_h)) + Pᵀ K_eff P`` with ``P = ⊕_h real(Ψ_h)`` onto the contact slots and
-    ``K_eff`` the contact AFT Jacobian seen through the condensed modes (module docstring)."""
+    ``K_eff`` the contact AFT Jacobian seen through the condensed modes, without the directions
+    the gauge holds (module docstring)."""
     if ev.aft.jac is None or ev.aft.jac.shape[-1] != model.C:
         raise ValueError("the evaluation must carry the full contact Jacobian (jacobian=True)")
     Z, D1, P = [], [], []
@@ -91,7 +100,15 @@ def modal_hill_matrices(model, ev, omega: float, band: float = BAND):
     KP = Kc @ Pfull
     if np.any(G):
         KP = np.linalg.solve(np.eye(model.n_d) + (Kc @ G), KP)
-    return sla.block_diag(*Z) + Pfull.T @ KP, sla.block_diag(*D1)
+    J, D = sla.block_diag(*Z) + Pfull.T @ KP, sla.block_diag(*D1)
+    if ev.gauge.shape[1]:                           # hold the gauged rigid-body directions
+        kept0 = np.flatnonzero(np.sqrt(model.modal[0].w2) <= (model.H + band) * omega)
+        rigid = model.S[0][model.zero_modes]
+        E = np.zeros((J.shape[0], ev.gauge.shape[1]))
+        E[np.searchsorted(kept0, rigid)] = ev.gauge
+        Q = sla.null_space(E.T)
+        J, D = Q.T @ J @ Q, Q.T @ D @ Q
+    return J, D
 
 
 def _contact_matrix(jac: np.ndarray, p: int) -> sparse.csr_array:

@@ -31,7 +31,7 @@ def plot_eebm_validity(study: xr.Dataset, path) -> None:
     ax.axvline(ZETA_LIMIT, color="0.4", ls=":", lw=1, label=rf"validity limit $\zeta_{{tot}}$ = {ZETA_LIMIT:g}")
     ax.set_xlabel(r"total damping ratio $\zeta_{tot}$ of the E-EBM point")
     ax.set_ylabel("|E-EBM amplitude / forced peak − 1|")
-    ax.set_ylim(1e-6, 1)
+    ax.set_ylim(1e-7, 1)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7, loc="upper left")
     ax.set_title("E-EBM against the forced response (H = 1)", fontsize=9)
@@ -119,7 +119,8 @@ def plot_stability(study: xr.Dataset, path) -> None:
     ax.set_ylabel("peak displacement over the period")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    ax.set_title(r"Duffing $\ddot x + 0.02\dot x + x + x^3 = 0.01\cos\omega t$", fontsize=9)
+    ax.set_title(r"Duffing $\ddot x + 0.02\dot x + x + x^3 = 0.01\cos\omega t$ (the H curves overlap)",
+                 fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

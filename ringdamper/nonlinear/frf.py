@@ -145,6 +145,7 @@ def point_stability(frf: FRF, tol: float = 1e-6) -> tuple[np.ndarray, np.ndarray
     for i, p in enumerate(frf.points):
         omega = p.z[-1]
         ev = model.evaluate(p.z[:-1], omega, 0.0, True)
+        ev.gauge = p.payload.gauge                   # the directions held when it was accepted
         J, D1 = modal_hill_matrices(model, ev, omega)
         lam = hill_exponents(J, D1, omega)
         growth[i], stable[i] = np.max(lam.real), is_stable(lam, omega, tol)

@@ -86,7 +86,7 @@ def plot_harmonics(study: xr.Dataset, path) -> None:
 def plot_kriging_coverage(study: xr.Dataset, path) -> None:
     """±2σ coverage against the training size: ML and calibrated variance, on the validation split,
     near the boundary and inside, with the nominal rate."""
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    fig, ax = plt.subplots(figsize=(8.6, 4.4))
     n = study.n_training.values
     styles = {"validation": "-", "near_boundary": "--", "interior": ":"}
     colours = {"ml": "tab:red", "jackknife": "tab:blue"}
@@ -98,7 +98,7 @@ def plot_kriging_coverage(study: xr.Dataset, path) -> None:
     ax.set_xlabel("training geometries")
     ax.set_ylabel("points within ±2σ (%)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, ncol=2, loc="lower right")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0))
     ax.set_title(f"Kriging ±2σ coverage on held-out geometries (boundary margin "
                  f"{study.attrs['boundary_margin']:g})", fontsize=9)
     fig.tight_layout()

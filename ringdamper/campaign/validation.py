@@ -19,8 +19,7 @@ import xarray as xr
 from ..io import variable
 from .dataset import kappa
 from .exploration import BACKBONE_OUTPUTS, backbones
-
-SIGMA_BAND = 2.0
+from .kriging import SIGMA_BAND
 
 
 def r2(y, y_hat, centre=None) -> float:

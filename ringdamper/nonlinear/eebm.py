@@ -11,9 +11,21 @@ so ``max_φ E_f = π γ |Q_1ᴴ F̂|`` at ``φ = π/2 − arg(Q_1ᴴ F̂)`` and 
 ``γ = E_damp / (π |Q_1ᴴ F̂|)``. ``φ`` is the phase of the forcing relative to the dNNM's phase
 normalisation. The energy dissipated by each contact pair per cycle is
 ``∮ λ·ḋ = π Σ_h h (λa_h db_h − λb_h da_h)`` (:func:`ringdamper.nonlinear.friction.dissipated_energy`).
+
+Validity. The E-EBM places the resonance on the undamped-like backbone (phase resonance); the
+forced peak drifts off it as the total damping grows. With the total damping ratio seen by the mode
+
+    ζ_tot = E_damp / (2π ω² Σ_h h² Σ_r |η_{h,r}|²)      (= (c + ξ)/(2ω) for one mode at H = 1),
+
+the amplitude error against the forced-response peak passes 5 % at ζ_tot ≈ 0.31 for structural
+(viscous) damping, ≈ 0.125 for non-proportional friction damping on a two-DoF chain, and never (up
+to ζ_tot = 0.67) for friction on a single DoF (docs/method_limits.md §1, measured by
+:mod:`ringdamper.studies.method_limits.eebm_validity`). Points above ``zeta_limit`` (default
+``ZETA_LIMIT`` = 0.1, below every crossing) are flagged (``valid`` False) and logged as a warning.
 """
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,13 +34,20 @@ from ringdamper.nonlinear.friction import dissipated_energy
 from ringdamper.nonlinear.epmc import Backbone
 from ringdamper.nonlinear.response import response_harmonics, time_peak
 
+log = logging.getLogger(__name__)
+
+#: total damping ratio ζ_tot above which the E-EBM resonant amplitude may be off by more than 5 %
+#: (docs/method_limits.md §1)
+ZETA_LIMIT = 0.1
+
 
 @dataclass
 class EEBMResult:
     """E-EBM outputs on the backbone's α grid: ``omega`` [rad/s], ``frequency`` [Hz], ``zeta``,
     ``gamma`` [N], ``phi`` [rad], ``q_res_peak`` (peak of the response DoF's time signal) and
     ``q_res_h1`` (its first-harmonic magnitude) [m], ``energy_dissipated`` [J] (α × pair),
-    ``e_damp`` [J], and the backbone ``status``/``reason``."""
+    ``e_damp`` [J], the total damping ratio ``zeta_total`` and ``valid`` (``zeta_total`` within
+    the validity limit, module doc), and the backbone ``status``/``reason``."""
 
     alpha: np.ndarray
     omega: np.ndarray
@@ -40,13 +59,17 @@ class EEBMResult:
     q_res_h1: np.ndarray
     energy_dissipated: np.ndarray
     e_damp: np.ndarray
+    zeta_total: np.ndarray
+    valid: np.ndarray
     status: np.ndarray
     reason: list
 
 
-def eebm(backbone: Backbone, zeta_s: float | np.ndarray = 0.0) -> EEBMResult:
+def eebm(backbone: Backbone, zeta_s: float | np.ndarray = 0.0,
+         zeta_limit: float = ZETA_LIMIT) -> EEBMResult:
     """Apply the E-EBM to every point of ``backbone`` with structural modal damping ratio
-    ``zeta_s`` (or the structure's ``C`` where given) and the structure's harmonic-1 forcing."""
+    ``zeta_s`` (or the structure's ``C`` where given) and the structure's harmonic-1 forcing;
+    points whose total damping ratio exceeds ``zeta_limit`` are flagged and logged."""
     model = backbone.model
     n = backbone.alpha.size
     c = [m.damping(zeta_s) for m in model.modal]
@@ -54,7 +77,7 @@ def eebm(backbone: Backbone, zeta_s: float | np.ndarray = 0.0) -> EEBMResult:
     if not np.any(f1):
         raise ValueError("the structure has no harmonic-1 forcing vector")
     gamma, phi, e_damp = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.nan)
-    q_peak, q_h1 = np.full(n, np.nan), np.full(n, np.nan)
+    q_peak, q_h1, zeta_tot = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.nan)
     e_d = np.full((n, model.npairs), np.nan)
     for i in range(n):
         if not np.isfinite(backbone.omega[i]):
@@ -63,6 +86,8 @@ def eebm(backbone: Backbone, zeta_s: float | np.ndarray = 0.0) -> EEBMResult:
         eta = [e[i] for e in backbone.eta]
         e_damp[i] = np.pi * w * sum(h * h * np.sum((c[h] + xi) * np.abs(eta[h]) ** 2)
                                     for h in range(1, model.H + 1))
+        zeta_tot[i] = e_damp[i] / (2 * np.pi * w * w * sum(
+            h * h * np.sum(np.abs(eta[h]) ** 2) for h in range(1, model.H + 1)))
         qf = np.vdot(eta[1], f1)                         # Q_1ᴴ F̂ = η_1ᴴ Φ_1ᴴ F̂
         gamma[i] = e_damp[i] / (np.pi * abs(qf))
         phi[i] = np.angle(np.exp(1j * (np.pi / 2 - np.angle(qf))))
@@ -71,7 +96,13 @@ def eebm(backbone: Backbone, zeta_s: float | np.ndarray = 0.0) -> EEBMResult:
         d = backbone.d[i].reshape(model.C, model.npairs, 3).transpose(1, 2, 0)
         lam = backbone.lam[i].reshape(model.C, model.npairs, 3).transpose(1, 2, 0)
         e_d[i] = dissipated_energy(d, lam)
+    valid = ~(zeta_tot > zeta_limit)
+    if not valid.all():
+        log.warning("E-EBM outside its validity range at %d of %d points: total damping ratio up to "
+                    "%.3g > %.3g, the resonant amplitude may be off by more than 5 %% (compute the "
+                    "forced response there)", int((~valid).sum()), n, np.nanmax(zeta_tot), zeta_limit)
     return EEBMResult(alpha=backbone.alpha, omega=backbone.omega,
                       frequency=backbone.omega / (2 * np.pi), zeta=backbone.zeta, gamma=gamma,
                       phi=phi, q_res_peak=q_peak, q_res_h1=q_h1, energy_dissipated=e_d,
-                      e_damp=e_damp, status=backbone.status, reason=backbone.reason)
+                      e_damp=e_damp, zeta_total=zeta_tot, valid=valid, status=backbone.status,
+                      reason=backbone.reason)

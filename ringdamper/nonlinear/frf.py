@@ -9,7 +9,9 @@ pseudo-arc-length steps until ω passes ``omega_end`` (status 1 if it turns back
 the step retried, as in the EPMC (:meth:`ringdamper.nonlinear.condensed.CondensedHBM.pin_seen`). The
 resonance peak is the maximum of the response measure along the branch, refined between the
 neighbouring points by a bounded Brent search over the arc-length coordinate (each evaluation a
-converged solution on the hyperplane normal to the local tangent).
+converged solution on the hyperplane normal to the local tangent). Every point's local stability
+comes from Hill's method on the full modal harmonic-balance Jacobian
+(:mod:`ringdamper.nonlinear.stability`).
 """
 from __future__ import annotations
 
@@ -26,6 +28,7 @@ from ringdamper.nonlinear.forced import ForcedProblem
 from ringdamper.nonlinear.fourier import default_nt
 from ringdamper.nonlinear.newton import newton
 from ringdamper.nonlinear.response import response_harmonics, time_peak
+from ringdamper.nonlinear.stability import hill_exponents, is_stable, modal_hill_matrices
 from ringdamper.nonlinear.structure import Structure
 
 
@@ -33,9 +36,10 @@ from ringdamper.nonlinear.structure import Structure
 class FRF:
     """Forced-response branch: per point ``omega`` [rad/s], ``q_h1`` (first-harmonic magnitude
     of the response DoF), ``q_peak`` (peak of its time signal) [m] and ``drift`` (relative mean
-    force on a gauged free body, see :mod:`ringdamper.nonlinear.condensed`); ``status`` 0 when the
-    branch reached ``omega_end`` (DRIFT if a point's drift exceeds ``drift_tol``);
-    ``points``/``tangents``/``scales`` of the continuation."""
+    force on a gauged free body, see :mod:`ringdamper.nonlinear.condensed`), ``growth`` (largest
+    real part of the point's Floquet exponents [1/s]) and ``stable`` (Hill's method; both None when
+    not computed); ``status`` 0 when the branch reached ``omega_end`` (DRIFT if a point's drift
+    exceeds ``drift_tol``); ``points``/``tangents``/``scales`` of the continuation."""
 
     gamma: float
     zeta_s: float
@@ -52,6 +56,8 @@ class FRF:
     tol: float = 1e-10
     max_iter: int = 20
     wall_time: float = 0.0
+    growth: np.ndarray | None = None
+    stable: np.ndarray | None = None
 
 
 @dataclass
@@ -72,12 +78,14 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
                     omega_start: float, omega_end: float, *, H: int = 1, nt: int | None = None,
                     zeta_s: float = 0.0, pole_band: float = 0.05, tol: float = 1e-8,
                     max_iter: int = 20, steps: StepControl | None = None,
-                    max_points: int = 1000, drift_tol: float = 1e-8) -> FRF:
+                    max_points: int = 1000, drift_tol: float = 1e-8,
+                    stability: bool = True) -> FRF:
     """Forced response at forcing amplitude ``gamma`` [N] from ``omega_start`` to ``omega_end``.
 
     ``steps`` controls the arc length measured on unknowns scaled by their running maxima (times
     √n) and ω by ``|omega_end − omega_start|`` (default initial 0.02, min 1e-6, max 0.1). ``pole_band``
-    keeps modes with ``ω_r ∈ h·[ω_lo(1−pole_band), ω_hi(1+pole_band)]`` explicit.
+    keeps modes with ``ω_r ∈ h·[ω_lo(1−pole_band), ω_hi(1+pole_band)]`` explicit. ``stability``:
+    classify every point by Hill's method (:func:`point_stability`).
     """
     t0 = time.perf_counter()
     nt = default_nt(H) if nt is None else nt
@@ -119,8 +127,29 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
     status, reason = run.status, run.reason
     if status == Status.CONVERGED and sign * (run.points[-1].z[-1] - omega_end) < 0:
         status, reason = Status.NO_CONVERGENCE, "the branch turned back below omega_start"
-    return _frf(gamma, zeta_s, run.points, run.tangents, run.scales, status, reason,
-                problem, tol, max_iter, drift_tol, t0)
+    frf = _frf(gamma, zeta_s, run.points, run.tangents, run.scales, status, reason,
+               problem, tol, max_iter, drift_tol, t0)
+    if stability:
+        frf.growth, frf.stable = point_stability(frf)
+        frf.wall_time = time.perf_counter() - t0
+    return frf
+
+
+def point_stability(frf: FRF, tol: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:
+    """Largest real part of the Floquet exponents [1/s] of every branch point and its stability
+    (``Re λ ≤ tol·ω``), by Hill's method on the full modal Jacobian
+    (:func:`ringdamper.nonlinear.stability.modal_hill_matrices`)."""
+    model = frf.problem.model
+    growth = np.empty(len(frf.points))
+    stable = np.empty(len(frf.points), bool)
+    for i, p in enumerate(frf.points):
+        omega = p.z[-1]
+        ev = model.evaluate(p.z[:-1], omega, 0.0, True)
+        ev.gauge = p.payload.gauge                   # the directions held when it was accepted
+        J, D1 = modal_hill_matrices(model, ev, omega)
+        lam = hill_exponents(J, D1, omega)
+        growth[i], stable[i] = np.max(lam.real), is_stable(lam, omega, tol)
+    return growth, stable
 
 
 def _frf(gamma, zeta_s, points, tangents, scales, status, reason, problem, tol, max_iter,

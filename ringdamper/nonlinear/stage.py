@@ -19,6 +19,7 @@ from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc
 from ringdamper.nonlinear.structure import HarmonicData, Structure
+from ringdamper.nonlinear.truncation import highest_harmonic_fraction, warn_truncation
 from ringdamper.io import declared_dataset, nan_values, variable
 from ringdamper.nonlinear.normalisation import normalised_frequency
 
@@ -78,10 +79,13 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
     backbone = epmc(structure, contacts, alpha, H=cfg["n_harmonics"], nt=cfg["n_time_samples"],
                     omega_target=omega_stuck)
     res = eebm(backbone, zeta_s=cfg["structural_damping_ratio"])
+    highest = highest_harmonic_fraction(backbone.model.modal, backbone.eta, backbone.omega)
+    warn_truncation(highest, alpha)
     values = {"omega0": normalised_frequency(res.omega, omega_stuck_default), "frequency": res.frequency,
               "zeta": res.zeta, "gamma": res.gamma, "phi": res.phi, "q_res_z": res.q_res_peak,
               "q_res_z_h1": res.q_res_h1, "energy_dissipated": res.energy_dissipated,
-              "energy_damping": res.e_damp, "rigid_body_imbalance": backbone.drift}
+              "energy_damping": res.e_damp, "rigid_body_imbalance": backbone.drift,
+              "highest_harmonic_energy": highest}
     attrs = {"kappa": np.asarray(static.attrs["kappa"], dtype=float), "n_harmonics": cfg["n_harmonics"],
              "n_time_samples": cfg["n_time_samples"], "friction_law": cfg["friction_law"],
              "structural_damping_ratio": cfg["structural_damping_ratio"],
@@ -107,6 +111,9 @@ DNNM_VARIABLES = {
         "amplitude", "1",
         "mean force on the ring's free rigid-body modes (rotation about Z, axial) held by the gauge, "
         "relative to the contact forces: the ratcheting drive"),
+    "highest_harmonic_energy": (
+        "amplitude", "1",
+        "fraction of the vibration energy in the highest harmonic H (truncation indicator; NaN at H = 1)"),
 }
 STATUS_MEANING = ("0 converged, 1 no convergence, 2 not reached, 3 converged with the ring's mean "
                   "rigid-body equilibrium unbalanced (ratcheting), 4 budget, 99 the geometry's chain failed "

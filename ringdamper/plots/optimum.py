@@ -19,6 +19,15 @@ def energy_at(dnnm, alpha: float) -> np.ndarray:
     return np.array([np.interp(np.log(alpha), s, e[:, j]) for j in range(e.shape[1])])
 
 
+def draw_branch(ax, x, y, stable, **style) -> None:
+    """Branch ``y(x)`` solid where ``stable`` (Hill's method), dashed where unstable; consecutive
+    runs share their end point so the curve stays connected."""
+    stable = np.asarray(stable, bool)
+    cuts = np.flatnonzero(np.diff(stable.astype(int))) + 1
+    for lo, hi in zip(np.r_[0, cuts], np.r_[cuts, stable.size]):
+        ax.plot(x[lo:hi + 1], y[lo:hi + 1], "-" if stable[lo] else "--", **style)
+
+
 def plot_optimum_maps(statics: dict, dnnms: dict, curves: dict, path) -> None:
     """Per ring (rows): N0 / area and gap at rest, and E_d at the E-EBM resonance of the highest
     forcing level (one colour scale per quantity)."""
@@ -41,7 +50,8 @@ def plot_optimum_maps(statics: dict, dnnms: dict, curves: dict, path) -> None:
 def plot_optimum_dynamics(dnnms: dict, curves: dict, path) -> None:
     """Top: both backbones (ω0, ζ, γ against |q_res,z|) with the forcing levels (dotted) and each
     ring's E-EBM resonances (circles). Bottom: forced responses at every level (solid), the
-    backbones ω0(|q_res,z|) (dashed), forced peaks (×) against E-EBM predictions (circles)."""
+    backbones ω0(|q_res,z|) (dash-dotted), forced peaks (×) against E-EBM predictions (circles);
+    unstable parts of the forced responses (Hill's method) dashed."""
     fig = plt.figure(figsize=(14, 8.5))
     grid = fig.add_gridspec(2, 3, height_ratios=[1, 1.25])
     top = [fig.add_subplot(grid[0, k]) for k in range(3)]
@@ -50,17 +60,19 @@ def plot_optimum_dynamics(dnnms: dict, curves: dict, path) -> None:
     for ring, ds in dnnms.items():
         color = STYLES[ring]["color"]
         ok = np.isin(ds.status.values, (0, 3))
-        ax.plot(ds.omega0.values[ok], 1e3 * ds.q_res_z.values[ok], "--", color=color, lw=0.9)
+        ax.plot(ds.omega0.values[ok], 1e3 * ds.q_res_z.values[ok], "-.", color=color, lw=0.9)
         for c in curves[ring]:
             q_e, w_e = 1e3 * float(c.eebm_amplitude), float(c.eebm_omega0)
-            ax.plot(c.omega0.values, 1e3 * c.amplitude.values, "-", color=color, lw=1.1)
+            draw_branch(ax, c.omega0.values, 1e3 * c.amplitude.values, c.stable.values,
+                        color=color, lw=1.1)
             ax.plot(float(c.peak_omega0), 1e3 * float(c.peak_amplitude), "x", color=color, ms=9, mew=2)
             ax.plot(w_e, q_e, "o", mfc="none", color=color, ms=9, mew=1.2)
             top[2].plot(q_e, float(c.gamma), "o", mfc="none", color=color, ms=6)
     for c in curves["default"]:
         top[2].axhline(float(c.gamma), color="0.5", ls=":", lw=0.8)
-    ax.plot([], [], "k-", label="forced response (HBM)")
-    ax.plot([], [], "k--", lw=0.9, label="backbone")
+    ax.plot([], [], "k-", label="forced response (HBM), stable")
+    ax.plot([], [], "k--", lw=1.1, label="forced response, unstable (Hill)")
+    ax.plot([], [], "k-.", lw=0.9, label="backbone")
     ax.plot([], [], "kx", ms=9, mew=2, label="forced-response peak")
     ax.plot([], [], "ko", mfc="none", ms=9, label="E-EBM prediction")
     for ring in dnnms:

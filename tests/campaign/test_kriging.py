@@ -120,7 +120,8 @@ def test_analytic_loo_equals_brute_force(training, function):
 def test_stored_dataset_prediction_equals_openturns(tmp_path, function, settings):
     """Fit through fit_campaign, write/read kriging.nc, predict in numpy; OpenTURNS fitted on the same
     data with the same settings (deterministic) must give the same mean and variance, to 1e-8 of the
-    data spread and of σ² (measured: 1e-11 and 1e-9 with cond(R) ~ 5e7, 1e-14 when well conditioned)."""
+    data spread and of σ² (measured: 1e-11 and 1e-9 with cond(R) ~ 5e7, 1e-14 when well conditioned);
+    the calibrated standard deviation is the ML one times √ψ, ψ the stored variance factor."""
     ds = campaign_dataset(60)
     kappa = np.column_stack([ds[f"kappa{k}"].values for k in (1, 2, 3)])
     ds["gamma"] = ds["gamma"] * 0 + function(kappa)[:, None]
@@ -134,7 +135,11 @@ def test_stored_dataset_prediction_equals_openturns(tmp_path, function, settings
     mean_ot, var_ot = ot_prediction(kappa, ds["gamma"].values[:, 0], settings, points)
     mean, std = pred["gamma"].values[0], pred["gamma_std"].values[0]
     assert np.max(np.abs(mean - mean_ot)) <= 1e-8 * np.ptp(model.y)
-    assert np.max(np.abs(std**2 - var_ot)) <= 1e-8 * model.sigma**2
+    psi = float(stored["gamma_variance_factor"].values[0])
+    assert model.variance_factor == psi and psi > 0
+    assert np.max(np.abs(std**2 / psi - var_ot)) <= 1e-8 * model.sigma**2
+    raw = K.KrigingSurrogate(stored, calibrated=False).predict(points)["gamma_std"].values[0]
+    np.testing.assert_allclose(std, np.sqrt(psi) * raw, rtol=1e-12)
     assert pred["gamma"].attrs["units"] == "N"
 
 

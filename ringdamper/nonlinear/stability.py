@@ -1,0 +1,121 @@
+"""Local stability of harmonic-balance solutions by Hill's method (docs/method_limits.md §4).
+
+A periodic solution ``q(t)`` is perturbed by ``δq = e^{λt} p(t)``, ``p`` periodic and expanded on
+the same harmonics. In coordinates where the mass matrix is the identity (mass-normalised modes of
+every harmonic) the linear part of harmonic ``h`` becomes
+``ω_r² + (λ + ihω)² + (λ + ihω) c_r = z_h + λ(2ihω + c_r) + λ²``, so the Hill eigenproblem on the
+real slots of the harmonic-balance unknowns is the quadratic pencil
+
+    (λ² I + λ Δ₁ + J) v = 0,       Δ₁ = ⊕_h real(diag(c_r + 2ihω)),
+
+with ``J`` the Jacobian of the real harmonic-balance residual (linear part plus the AFT Jacobian
+of the contact forces) and ``real(·)`` the real form of a complex operator on ``(a; b)`` slots
+(:func:`ringdamper.nonlinear.fourier.real_block`). It is solved in its companion form
+``[[0, I], [−J, −Δ₁]]``. Every Floquet exponent appears in the Hill spectrum with copies shifted by
+multiples of ``iω``; the truncation pollutes the copies far from the real axis, so the exponents
+kept are those in the fundamental strip ``|Im λ| ≤ ω/2`` (Moore 2005, *Int. J. Numer. Meth. Eng.*
+64:1431; Lazarus & Thomas 2010, *C. R. Mécanique* 338:510). The solution is stable when every kept
+exponent has ``Re λ ≤ tol·ω`` (the tolerance absorbs the neutral exponents of undamped or free
+rigid-body directions).
+
+Large models (a real ring keeps hundreds of modes per harmonic) are reduced first: the modes with
+``ω_r > (H + band)·ω`` lie above every retained harmonic, their exponents far outside the strip,
+so they are condensed onto the contact at ``λ = 0`` with their exact receptance ``1/z_r`` (a
+residual flexibility ``G``, positive because ``ω_r > hω``, as in the condensed harmonic balance);
+the contact stiffness the kept modes see is then ``K_eff = (I + K_c G)⁻¹ K_c``. (Condensing modes
+*below* a harmonic as well would add negative flexibility and spurious real exponents.)
+
+Gauged rigid-body directions. Where the condensed HBM holds a free rigid-body direction of the ring
+by its gauge (:mod:`ringdamper.nonlinear.condensed`: the mean position pinned, the unbalanced mean
+force reported as drift), the solution is one of the held system, and so is its stability: those
+directions are removed from the Hill problem. Otherwise their mean position, whose net contact
+stiffness can be slightly negative there, contributes a small real exponent (≈ 0.02 1/s at
+5.8e3 rad/s on the default ring) that states the drift already reported, not an instability of the
+vibration.
+The linearisation of the hysteretic contact force by its AFT
+Jacobian is the usual approximation of Hill's method for friction (Krack & Gross 2019, *Harmonic
+Balance for Nonlinear Vibration Problems*, §5).
+"""
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg as sla
+from scipy import sparse
+
+from ringdamper.nonlinear.fourier import real_block
+
+#: modes kept explicit in the Hill problem: ``ω_r ≤ (H + BAND)·ω`` (the others condensed)
+BAND = 1.0
+
+
+def hill_exponents(J: np.ndarray, D1: np.ndarray, omega: float) -> np.ndarray:
+    """Floquet exponents of the pencil ``λ² I + λ D1 + J`` in the strip ``|Im λ| ≤ ω/2``."""
+    N = J.shape[0]
+    if J.shape != (N, N) or D1.shape != (N, N):
+        raise ValueError(f"J and D1 must be square and alike, got {J.shape} and {D1.shape}")
+    A = np.block([[np.zeros((N, N)), np.eye(N)], [-J, -D1]])
+    lam = sla.eigvals(A, check_finite=False)
+    return lam[np.abs(lam.imag) <= 0.5 * abs(omega) * (1 + 1e-9)]
+
+
+def is_stable(exponents: np.ndarray, omega: float, tol: float = 1e-6) -> bool:
+    """Every exponent has ``Re λ ≤ tol·ω``."""
+    return bool(np.max(exponents.real, initial=-np.inf) <= tol * abs(omega))
+
+
+def modal_hill_matrices(model, ev, omega: float, band: float = BAND):
+    """``J`` and ``Δ₁`` of a forced condensed-HBM solution (:class:`~ringdamper.nonlinear.condensed.
+    CondensedHBM`, evaluation ``ev`` with its full AFT Jacobian) on the modes kept explicit
+    (``ω_r ≤ (H + band)·ω``), slots ``[η_0 | a_1, b_1 | … | a_H, b_H]`` (``η_h = a_h − i b_h``):
+    ``J = ⊕_h real(diag(z_h)) + Pᵀ K_eff P`` with ``P = ⊕_h real(Ψ_h)`` onto the contact slots and
+    ``K_eff`` the contact AFT Jacobian seen through the condensed modes, without the directions
+    the gauge holds (module docstring)."""
+    if ev.aft.jac is None or ev.aft.jac.shape[-1] != model.C:
+        raise ValueError("the evaluation must carry the full contact Jacobian (jacobian=True)")
+    Z, D1, P = [], [], []
+    G = np.zeros((model.n_d, model.n_d))
+    for h, m in enumerate(model.modal):
+        z, _, _ = model._modal_impedance(h, omega, 0.0)
+        c = model.damping[h]
+        keep = np.sqrt(m.w2) <= (model.H + band) * omega
+        rows = model._rows(h)
+        rest = m.Psi[:, ~keep]
+        receptance = (rest / z[~keep]) @ rest.conj().T
+        if h == 0:
+            Z.append(np.diag(z[keep].real))
+            D1.append(np.diag(c[keep]))
+            P.append((rows, m.Psi[:, keep].real))
+            G[rows, rows] = receptance.real
+        else:
+            Z.append(real_block(np.diag(z[keep])))
+            D1.append(real_block(np.diag(c[keep] + 2j * h * omega)))
+            P.append((rows, real_block(m.Psi[:, keep])))
+            G[rows, rows] = real_block(receptance)
+    Pfull = np.zeros((model.n_d, sum(b.shape[1] for _, b in P)))
+    col = 0
+    for rows, b in P:
+        Pfull[rows, col:col + b.shape[1]] = b
+        col += b.shape[1]
+    Kc = _contact_matrix(ev.aft.jac, model.p)
+    KP = Kc @ Pfull
+    if np.any(G):
+        KP = np.linalg.solve(np.eye(model.n_d) + (Kc @ G), KP)
+    J, D = sla.block_diag(*Z) + Pfull.T @ KP, sla.block_diag(*D1)
+    if ev.gauge.shape[1]:                           # hold the gauged rigid-body directions
+        kept0 = np.flatnonzero(np.sqrt(model.modal[0].w2) <= (model.H + band) * omega)
+        rigid = model.S[0][model.zero_modes]
+        E = np.zeros((J.shape[0], ev.gauge.shape[1]))
+        E[np.searchsorted(kept0, rigid)] = ev.gauge
+        Q = sla.null_space(E.T)
+        J, D = Q.T @ J @ Q, Q.T @ D @ Q
+    return J, D
+
+
+def _contact_matrix(jac: np.ndarray, p: int) -> sparse.csr_array:
+    """AFT Jacobian on the slot-major contact layout (sparse: one 3C × 3C block per pair):
+    ``jac[q, i, c, j, c']`` at ``(c·p + 3q + i, c'·p + 3q + j)``."""
+    npairs, _, C = jac.shape[:3]
+    q, i, c, j, c2 = np.indices(jac.shape).reshape(5, -1)
+    keep = jac.ravel() != 0
+    rows, cols = c * p + 3 * q + i, c2 * p + 3 * q + j
+    return sparse.csr_array((jac.ravel()[keep], (rows[keep], cols[keep])), shape=(C * p, C * p))

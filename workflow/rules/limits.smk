@@ -1,0 +1,31 @@
+# Where the methods fail (docs/method_limits.md): `snakemake method_limits` -> results/fidelity/limits/.
+# Not part of the default campaign. The E-EBM, harmonic-truncation and stability studies run on small
+# analytic systems; the Kriging coverage study refits the surrogates of the campaign dataset.
+LIMITS = f"{RESULTS}/fidelity/limits"
+LIMIT_STUDIES = ("eebm_validity", "harmonics", "stability", "kriging_coverage")
+
+
+rule method_limits:
+    input:
+        expand(f"{LIMITS}/{{study}}.nc", study=LIMIT_STUDIES),
+        expand(f"{LIMITS}/{{study}}.png", study=LIMIT_STUDIES),
+
+
+rule limits_study:
+    input:
+        lambda wc: [f"{RESULTS}/campaign/dataset.nc"] if wc.study == "kriging_coverage" else [],
+    output:
+        nc=f"{LIMITS}/{{study}}.nc",
+        png=f"{LIMITS}/{{study}}.png",
+    wildcard_constraints:
+        study="|".join(LIMIT_STUDIES),
+    params:
+        sizes=[20, 40, 60, 100],
+    log:
+        f"{RESULTS}/logs/fidelity/limits_{{study}}.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/fidelity/limits_{{study}}.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/method_limits.py"

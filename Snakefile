@@ -27,6 +27,7 @@ include: "workflow/rules/surrogate.smk"
 include: "workflow/rules/sensitivity.smk"
 include: "workflow/rules/frf.smk"
 include: "workflow/rules/report.smk"
+include: "workflow/rules/fidelity.smk"
 
 
 rule all:

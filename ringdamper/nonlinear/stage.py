@@ -76,7 +76,7 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
     alpha = amplitude_grid(cfg)
     omega_stuck = target_stuck_frequency(structure, contacts, target_hz)
     backbone = epmc(structure, contacts, alpha, H=cfg["n_harmonics"], nt=cfg["n_time_samples"],
-                    omega_target=omega_stuck)
+                    omega_target=omega_stuck, tol=cfg.get("continuation_tolerance", 1e-8))
     res = eebm(backbone, zeta_s=cfg["structural_damping_ratio"])
     values = {"omega0": normalised_frequency(res.omega, omega_stuck_default), "frequency": res.frequency,
               "zeta": res.zeta, "gamma": res.gamma, "phi": res.phi, "q_res_z": res.q_res_peak,

@@ -35,6 +35,7 @@ studies: $(STAMP)
 # the fidelity study (config.yaml `fidelity:`; not part of `campaign`), then its committed figures and tables
 fidelity: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --keep-going fidelity
+	mkdir -p docs/fidelity
 	cp results/fidelity/fidelity_*.png docs/figures/
 	cp results/fidelity/dials.csv results/fidelity/mesh.csv results/fidelity/mesh_limits.csv \
 	   results/fidelity/surrogate.csv results/fidelity/forced.csv results/fidelity/summary.yaml docs/fidelity/

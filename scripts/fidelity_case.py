@@ -4,13 +4,13 @@ import yaml
 
 from ringdamper.io import log_to, write_netcdf
 from ringdamper.studies.fidelity.chain import run_case
-from ringdamper.studies.fidelity.dials import case_config
+from ringdamper.studies.fidelity.dials import case_config, rings
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log_to(sm.log[0])
 with open(sm.input.resonance) as fh:
     target_hz = yaml.safe_load(fh)["frequency_hz"]
 w = sm.wildcards
-ds = run_case(case_config(sm.config, w.dial, w.value), sm.config["fidelity"]["rings"][w.ring], target_hz)
+ds = run_case(case_config(sm.config, w.dial, w.value), rings(sm.config["fidelity"])[w.ring], target_hz)
 ds.attrs.update({"ring": w.ring, "dial": w.dial, "value": w.value})
 write_netcdf(ds, sm.output[0])

@@ -71,9 +71,9 @@ def test_lhs_design_draws_distinct_pool_points_spread_over_the_box():
 
 
 SMALL_FIDELITY = {
-    "rings": {"default": [0.0, 0.0, 0.0]},
-    "dials": {"harmonics": {"key": "dnnm.n_harmonics", "values": [1, 3]},
-              "amplitudes": {"key": "dnnm.n_amplitudes", "values": [5, 8, 16]}},
+    "rings": [{"name": "default", "kappa": [0.0, 0.0, 0.0]}],
+    "dials": [{"name": "harmonics", "key": "dnnm.n_harmonics", "values": [1, 3]},
+              {"name": "amplitudes", "key": "dnnm.n_amplitudes", "values": [5, 8, 16]}],
     "mesh_levels": [[1, 1], [2, 1], [3, 1]],
     "mesh_families": ["1D", "1B"],
     "training_sizes": [5, 8],

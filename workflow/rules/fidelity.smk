@@ -3,11 +3,7 @@
 from ringdamper.studies.fidelity.dials import dial_cases
 
 FIDELITY = f"{RESULTS}/fidelity"
-
-
-def fidelity_case_files():
-    return [f"{FIDELITY}/cases/{ring}/{dial}/{value}.nc"
-            for ring, dial, value in dial_cases(config)]
+FIDELITY_CASES = dial_cases(config) if "fidelity" in config else []
 
 
 rule fidelity:
@@ -52,11 +48,11 @@ rule fidelity_mesh_level:
 
 rule fidelity_dials:
     input:
-        fidelity_case_files(),
+        [f"{FIDELITY}/cases/{ring}/{dial}/{value}.nc" for ring, dial, value in FIDELITY_CASES],
     output:
         f"{FIDELITY}/dials.csv",
     params:
-        cases=[list(key) for key in dial_cases(config)],
+        cases=[list(key) for key in FIDELITY_CASES],
     log:
         f"{RESULTS}/logs/fidelity/dials.log",
     benchmark:
@@ -69,7 +65,7 @@ rule fidelity_dials:
 
 rule fidelity_mesh:
     input:
-        [f"{FIDELITY}/mesh/{factor}_{order}.yaml" for factor, order in config["fidelity"]["mesh_levels"]],
+        [f"{FIDELITY}/mesh/{factor}_{order}.yaml" for factor, order in config.get("fidelity", {}).get("mesh_levels", [])],
     output:
         levels=f"{FIDELITY}/mesh.csv",
         limits=f"{FIDELITY}/mesh_limits.csv",

@@ -1,7 +1,7 @@
 """The one-at-a-time cases of the fidelity study.
 
-Each dial is one configuration key (``fidelity.dials.<name>.key``, dotted) and a list of values; a
-case is (ring, dial, value) and changes only that key of the campaign configuration. The finest
+Each dial (an entry of ``fidelity.dials``: name, configuration key ``section.key`` and a list of
+values) changes one key; a case is (ring, dial, value) and changes only that key of the campaign configuration. The finest
 value of a dial (last in its list) is that dial's converged reference: the error of a case is
 measured against the case of the same ring and dial at the finest value, every other key at its
 default, so that each dial's error is its own. A dial runs on the rings of its ``rings`` list (all
@@ -17,6 +17,16 @@ import copy
 DEFAULT = "default"
 
 
+def rings(fidelity: dict) -> dict:
+    """Ring name -> kappa."""
+    return {r["name"]: r["kappa"] for r in fidelity["rings"]}
+
+
+def dials(fidelity: dict) -> dict:
+    """Dial name -> its entry (key, values, optional rings), in the configuration's order."""
+    return {d["name"]: d for d in fidelity["dials"]}
+
+
 def case_key(config: dict, ring: str, dial: str, label: str) -> tuple[str, str, str]:
     """(ring, dial, value) of a case, the shared default case when ``label`` is the dial's default."""
     if label == value_label(default_value(config, dial)):
@@ -26,13 +36,13 @@ def case_key(config: dict, ring: str, dial: str, label: str) -> tuple[str, str, 
 
 def dial_rings(fidelity: dict, dial: str) -> list[str]:
     """The rings dial ``dial`` runs on."""
-    return list(fidelity["dials"][dial].get("rings", fidelity["rings"]))
+    return list(dials(fidelity)[dial].get("rings", rings(fidelity)))
 
 
 def dial_cases(config: dict) -> list[tuple[str, str, str]]:
     """All distinct (ring, dial, value) cases, values as strings (Snakemake wildcards)."""
     fid = config["fidelity"]
-    keys = [case_key(config, ring, dial, value_label(v)) for dial, spec in fid["dials"].items()
+    keys = [case_key(config, ring, dial, value_label(v)) for dial, spec in dials(fid).items()
             for ring in dial_rings(fid, dial) for v in spec["values"]]
     return list(dict.fromkeys(keys))
 
@@ -55,9 +65,10 @@ def case_config(config: dict, dial: str, label: str) -> dict:
     the harmonics the dNNM asks for (reduction.n_harmonics >= dnnm.n_harmonics)."""
     if dial == DEFAULT:
         return copy.deepcopy(config)
-    spec = config["fidelity"]["dials"].get(dial)
+    known = dials(config["fidelity"])
+    spec = known.get(dial)
     if spec is None:
-        raise ValueError(f"fidelity.dials has no dial {dial!r}; known: {sorted(config['fidelity']['dials'])}")
+        raise ValueError(f"fidelity.dials has no dial {dial!r}; known: {sorted(known)}")
     out = copy.deepcopy(config)
     section, key = spec["key"].split(".")
     if section not in out or key not in out[section]:
@@ -70,5 +81,5 @@ def case_config(config: dict, dial: str, label: str) -> dict:
 
 def default_value(config: dict, dial: str):
     """The campaign's current setting of a dial."""
-    section, key = config["fidelity"]["dials"][dial]["key"].split(".")
+    section, key = dials(config["fidelity"])[dial]["key"].split(".")
     return config[section][key]

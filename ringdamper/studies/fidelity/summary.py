@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from .dials import DEFAULT, case_key, default_value, dial_rings, value_label
+from .dials import DEFAULT, case_key, default_value, dial_rings, dials, rings, value_label
 from .quantities import gamma_at, relative_errors, user_quantities
 
 COST_KEYS = ("static_cpu_s", "reduction_cpu_s", "dnnm_cpu_s", "chain_cpu_s", "chain_time_s", "peak_rss_mb")
@@ -23,9 +23,9 @@ def case_rows(config: dict, cases: dict) -> list[dict]:
     keys of :func:`dials.dial_cases` to their dnnm datasets."""
     fid = config["fidelity"]
     levels = config["sensitivity"]["levels"]
-    gammas = gamma_at(cases[(next(iter(fid["rings"])), DEFAULT, DEFAULT)], config["frf"]["target_amplitudes"])
+    gammas = gamma_at(cases[(next(iter(rings(fid))), DEFAULT, DEFAULT)], config["frf"]["target_amplitudes"])
     rows = []
-    for dial, spec in fid["dials"].items():
+    for dial, spec in dials(fid).items():
         for ring in dial_rings(fid, dial):
             labels = [value_label(v) for v in spec["values"]]
             q = {lb: user_quantities(cases[case_key(config, ring, dial, lb)], levels, gammas) for lb in labels}
@@ -89,8 +89,8 @@ def campaign_summary(config: dict, rows: list[dict], n_geometries: int, n_cores:
     settings and the converged reference (finest value of every dial)."""
     fid = config["fidelity"]
     chosen = choose(rows, fid["tolerance"])
-    current = {d: default_value(config, d) for d in fid["dials"]}
-    reference = {d: spec["values"][-1] for d, spec in fid["dials"].items()}
+    current = {d: default_value(config, d) for d in dials(fid)}
+    reference = {d: spec["values"][-1] for d, spec in dials(fid).items()}
     out = {"tolerance": fid["tolerance"], "chosen": chosen, "current": current, "reference": reference,
            "chain_cpu_s": {}, "campaign_h": {}}
     for name, settings in (("current", current), ("chosen", chosen), ("reference", reference)):

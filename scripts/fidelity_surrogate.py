@@ -12,4 +12,5 @@ d = dataset.sel(geometry=sm.params.default_gid)
 gammas = gamma_at(backbone_dataset(dataset.amplitude.values, d.q_res_z.values, d.zeta.values, d.omega0.values,
                                    d.gamma.values, d.status.values), cfg["frf"]["target_amplitudes"])
 write_csv(training_size_study(dataset, cfg["fidelity"]["training_sizes"], cfg["surrogate"],
-                              cfg["sensitivity"]["levels"], gammas, cfg["sampling"]["seed"]), sm.output[0])
+                              cfg["sensitivity"]["levels"], gammas, cfg["exploration"]["optimum_max_level"],
+                              cfg["sampling"]["seed"]), sm.output[0])

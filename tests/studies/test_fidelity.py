@@ -41,6 +41,10 @@ def test_user_quantities_of_a_synthetic_backbone():
     assert out["freq_low"] == pytest.approx(900.0 - 10.0 * np.log(5.0), rel=1e-12)
     assert out["q_gamma_1"] == pytest.approx(5e-5, rel=1e-2) and out["q_gamma_2"] == pytest.approx(2e-4, rel=1e-2)
     assert np.isnan(out["q_gamma_3"])                 # beyond the backbone
+    spike = zeta.copy()
+    spike[-1] = 5e-3                                  # a last-point jump above the read-out range
+    capped = user_quantities(backbone_dataset(np.arange(41.0), q, spike, freq, gamma), [5e-5, 4e-4], [], 4.5e-4)
+    assert capped["zeta_max"] == pytest.approx(1e-3, rel=1e-3)
     assert relative_errors({"a": np.nan}, {"a": 1.0})["a"] == np.inf
 
 
@@ -83,23 +87,22 @@ SMALL_FIDELITY = {
 
 @pytest.mark.slow
 def test_fidelity_rules_run_on_the_coarse_configuration(tmp_path):
-    config = yaml.safe_load((REPO / "tests" / "config_small.yaml").read_text())
-    config["fidelity"] = SMALL_FIDELITY
-    path = tmp_path / "config.yaml"
-    path.write_text(yaml.safe_dump(config))
-    out = tmp_path / "results"
-    run = run_snakemake(out, path, out / "fidelity" / "dials.csv", out / "fidelity" / "mesh.csv", cores=2,
-                        timeout=600)
+    """dials.csv and mesh.csv of a two-dial, one-ring study on the coarse mesh (8-node bricks)."""
+    small = yaml.safe_load((REPO / "tests" / "config_small.yaml").read_text())
+    (tmp_path / "config.yaml").write_text(yaml.safe_dump({**small, "fidelity": SMALL_FIDELITY}))
+    fid = tmp_path / "results" / "fidelity"
+    run = run_snakemake(tmp_path / "results", tmp_path / "config.yaml", fid / "dials.csv", fid / "mesh.csv",
+                        cores=2, timeout=600)
     assert run.returncode == 0, run.stderr[-3000:]
-    dials = pd.read_csv(out / "fidelity" / "dials.csv")
+    dials = pd.read_csv(fid / "dials.csv")
     assert len(dials) == 5 and set(dials.dial) == {"harmonics", "amplitudes"}
     assert (dials[dials.is_reference].error_max == 0).all()
     assert dials[dials.is_default].value.tolist() == [1, 8]     # config_small: H = 1, 8 amplitudes
     assert (dials.chain_cpu_s > 0).all() and (dials.peak_rss_mb > 50).all()
     h = dials[dials.dial == "harmonics"].set_index("value")
     assert h.dnnm_cpu_s[3] > h.dnnm_cpu_s[1]                    # more harmonics cost more
-    mesh = pd.read_csv(out / "fidelity" / "mesh.csv").sort_values("factor")
-    limits = pd.read_csv(out / "fidelity" / "mesh_limits.csv")
+    mesh = pd.read_csv(fid / "mesh.csv").sort_values("factor")
+    limits = pd.read_csv(fid / "mesh_limits.csv")
     f1d = limits.set_index("family").limit_hz["1D"]
     assert mesh.frequency_1D.is_monotonic_decreasing and f1d < mesh.frequency_1D.min()   # from above
     assert abs(mesh.error_1D.iloc[-1]) < abs(mesh.error_1D.iloc[0])

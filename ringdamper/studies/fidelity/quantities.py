@@ -2,7 +2,8 @@
 
 From the converged points (status 0 or 3) of a backbone, in order of amplitude:
 
-* ``zeta_max`` and ``q_at_zeta_max``: the peak of zeta against log |q_res,z|, refined by the parabola
+* ``zeta_max`` and ``q_at_zeta_max``: the peak of zeta against log |q_res,z| up to ``max_level``
+  (``exploration.optimum_max_level``, where the campaign's optimum reads it), refined by the parabola
   through the grid maximum and its two neighbours (the grid value at an end point);
 * ``freq_low`` / ``freq_high``: the resonant frequency (Hz) at the first and the last of the
   response levels (``sensitivity.levels``), linear in log |q_res,z|;
@@ -55,11 +56,12 @@ def gamma_at(ds: xr.Dataset, levels) -> np.ndarray:
     return np.array([_interp(np.log(lv), np.log(b["q_res_z"]), b["gamma"]) for lv in levels])
 
 
-def user_quantities(ds: xr.Dataset, response_levels, gammas) -> dict:
+def user_quantities(ds: xr.Dataset, response_levels, gammas, max_level: float = np.inf) -> dict:
     """The quantities above as a flat dict (units: 1, m, Hz, Hz, m ...)."""
     b = _usable(ds)
     logq = np.log(b["q_res_z"])
-    x, z = peak(logq, b["zeta"])
+    below = b["q_res_z"] <= max_level
+    x, z = peak(logq[below], b["zeta"][below])
     out = {"zeta_max": z, "q_at_zeta_max": float(np.exp(x)),
            "freq_low": _interp(np.log(response_levels[0]), logq, b["frequency"]),
            "freq_high": _interp(np.log(response_levels[-1]), logq, b["frequency"])}

@@ -23,12 +23,14 @@ def case_rows(config: dict, cases: dict) -> list[dict]:
     keys of :func:`dials.dial_cases` to their dnnm datasets."""
     fid = config["fidelity"]
     levels = config["sensitivity"]["levels"]
+    max_level = config["exploration"]["optimum_max_level"]
     gammas = gamma_at(cases[(next(iter(rings(fid))), DEFAULT, DEFAULT)], config["frf"]["target_amplitudes"])
     rows = []
     for dial, spec in dials(fid).items():
         for ring in dial_rings(fid, dial):
             labels = [value_label(v) for v in spec["values"]]
-            q = {lb: user_quantities(cases[case_key(config, ring, dial, lb)], levels, gammas) for lb in labels}
+            q = {lb: user_quantities(cases[case_key(config, ring, dial, lb)], levels, gammas, max_level)
+                 for lb in labels}
             ref = q[labels[-1]]
             for v, lb in zip(spec["values"], labels):
                 ds = cases[case_key(config, ring, dial, lb)]

@@ -39,11 +39,12 @@ def backbone_dataset(amplitude, q, zeta, freq, gamma, status=None) -> xr.Dataset
                       coords={"amplitude": amplitude})
 
 
-def computed_quantities(dataset: xr.Dataset, gid: str, levels, gammas) -> dict:
+def computed_quantities(dataset: xr.Dataset, gid: str, levels, gammas, max_level) -> dict:
     """User quantities of geometry ``gid`` of the campaign dataset (frequency read as omega0)."""
     g = dataset.sel(geometry=gid)
     return user_quantities(backbone_dataset(dataset.amplitude.values, g.q_res_z.values, g.zeta.values,
-                                            g.omega0.values, g.gamma.values, g.status.values), levels, gammas)
+                                            g.omega0.values, g.gamma.values, g.status.values), levels, gammas,
+                           max_level)
 
 
 def lhs_design(pool_kappa: np.ndarray, n: int, seed: int) -> list[int]:
@@ -78,7 +79,8 @@ def sequential_design(pool_kappa: np.ndarray, score: np.ndarray, start: list[int
     return chosen
 
 
-def validation_errors(dataset: xr.Dataset, train_gids, settings: dict, levels, gammas) -> tuple[dict, float]:
+def validation_errors(dataset: xr.Dataset, train_gids, settings: dict, levels, gammas,
+                      max_level) -> tuple[dict, float]:
     """Fit the campaign surrogate on ``train_gids``; RMS relative error of each user quantity over the
     validation geometries, and the fit's CPU time (s)."""
     mask = usable_mask(dataset) & dataset.geometry.isin(list(train_gids))
@@ -89,9 +91,10 @@ def validation_errors(dataset: xr.Dataset, train_gids, settings: dict, levels, g
     bb = backbones(surrogate, kappa_of(val), with_std=False)
     errors: dict[str, list] = {}
     for j, gid in enumerate(val.geometry.values):
-        ref = computed_quantities(dataset, gid, levels, gammas)
+        ref = computed_quantities(dataset, gid, levels, gammas, max_level)
         pred = user_quantities(backbone_dataset(bb.amplitude, bb.mean["q_res_z"][:, j], bb.mean["zeta"][:, j],
-                                                bb.mean["omega0"][:, j], bb.mean["gamma"][:, j]), levels, gammas)
+                                                bb.mean["omega0"][:, j], bb.mean["gamma"][:, j]), levels, gammas,
+                               max_level)
         for k, r in ref.items():
             if np.isfinite(r):
                 e = abs(pred[k] / r - 1.0) if np.isfinite(pred[k]) else 1.0
@@ -99,13 +102,14 @@ def validation_errors(dataset: xr.Dataset, train_gids, settings: dict, levels, g
     return {k: float(np.sqrt(np.mean(np.square(v)))) for k, v in errors.items()}, fit_cpu
 
 
-def training_size_study(dataset: xr.Dataset, sizes, surrogate_cfg: dict, levels, gammas, seed: int) -> list[dict]:
+def training_size_study(dataset: xr.Dataset, sizes, surrogate_cfg: dict, levels, gammas, max_level,
+                        seed: int) -> list[dict]:
     """Rows (design, n, error_<quantity>, fit_cpu_s, geometries) for every design and size."""
     settings = {**surrogate_cfg, "min_training": min(min(sizes), surrogate_cfg["min_training"])}
     pool = dataset.isel(geometry=(dataset.split == "training").values)
     pool_gids = pool.geometry.values
     pool_kappa = kappa_of(pool)
-    score = np.array([computed_quantities(dataset, g, levels, gammas)["zeta_max"] for g in pool_gids])
+    score = np.array([computed_quantities(dataset, g, levels, gammas, max_level)["zeta_max"] for g in pool_gids])
     ok = np.isfinite(score)
     pool_gids, pool_kappa, score = pool_gids[ok], pool_kappa[ok], score[ok]
     sizes = sorted(min(int(n), len(pool_gids)) for n in sizes)
@@ -116,7 +120,7 @@ def training_size_study(dataset: xr.Dataset, sizes, surrogate_cfg: dict, levels,
                  if design != "lhs" else None)
         for n in sizes:
             idx = lhs_design(pool_kappa, n, seed) if design == "lhs" else grown[:n]
-            err, fit_cpu = validation_errors(dataset, pool_gids[idx], settings, levels, gammas)
+            err, fit_cpu = validation_errors(dataset, pool_gids[idx], settings, levels, gammas, max_level)
             rows.append({"design": design, "n": n, **{f"error_{k}": v for k, v in err.items()},
                          "error_max": max(err.values()), "fit_cpu_s": fit_cpu,
                          "geometries": " ".join(pool_gids[idx])})

@@ -7,7 +7,7 @@ CORES  ?= 2
 # one BLAS/OpenMP thread per process: jobs run side by side on a 2-core machine
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 
-.PHONY: campaign test test-cluster bench studies report lint clean
+.PHONY: campaign test test-cluster bench studies fidelity report lint clean
 
 $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV) || python3 -m venv $(VENV)
@@ -39,6 +39,14 @@ studies: $(STAMP)
 	cp results/studies/contact_calibration/*.csv results/studies/contact_calibration/tables.md docs/calibration/
 	cp results/studies/hub_calibration.yaml results/studies/mesh_convergence.csv results/studies/reduction_convergence.md docs/calibration/
 	cp results/studies/contact_calibration/*.png docs/figures/
+
+# the fidelity study (config.yaml `fidelity:`; not part of `campaign`), then its committed figures and tables
+fidelity: $(STAMP)
+	$(BIN)/snakemake --cores $(CORES) --keep-going fidelity
+	mkdir -p docs/fidelity
+	cp results/fidelity/fidelity_*.png docs/figures/
+	cp results/fidelity/dials.csv results/fidelity/mesh.csv results/fidelity/mesh_limits.csv \
+	   results/fidelity/surrogate.csv results/fidelity/forced.csv results/fidelity/summary.yaml docs/fidelity/
 
 report: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --report results/report.html

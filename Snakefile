@@ -28,6 +28,7 @@ include: "workflow/rules/sensitivity.smk"
 include: "workflow/rules/frf.smk"
 include: "workflow/rules/report.smk"
 include: "workflow/rules/limits.smk"
+include: "workflow/rules/fidelity.smk"
 
 
 rule all:

@@ -12,6 +12,10 @@ Consistent tangent for the variation delta = N_b e_d, tested by N_a e_c (p = gra
                       + delta_cd  p_a^T S p_b                                          (geometric)
 
 At u = 0 the material part is the linear elastic stiffness and the geometric part vanishes.
+
+The prestressed vibration stiffness of ``fem.prestress`` is the linear one, K + K_sigma: the
+geometric term above with S replaced by the small-strain stress sigma = C eps(u) of a linear static
+solution (:func:`stress_stiffness`), e.g. Cook et al., *Concepts and Applications of FEA*, ch. 18.
 """
 
 from __future__ import annotations
@@ -84,8 +88,30 @@ def tangent_stiffness(basis: Basis, young: float, poisson: float, u=None) -> sp.
           + mu * np.einsum("eq,eqcd,eqab->eacbd", wj, FF, PP, optimize=True)
           + mu * np.einsum("eq,eqbc,eqad->eacbd", wj, Q, Q, optimize=True))
     if u is not None:
-        geo = np.einsum("eq,eqak,eqkl,eqbl->eab", wj, grads, S, grads, optimize=True)
-        ke += geo[:, :, None, :, None] * np.eye(3)[None, None, :, None, :]
+        ke += _geometric(grads, wj, S)
+    n = ke.shape[1] * 3
+    return _assemble_matrix(basis, ke.reshape(len(ke), n, n))
+
+
+def _geometric(grads: np.ndarray, wj: np.ndarray, stress: np.ndarray) -> np.ndarray:
+    """Element geometric stiffness delta_cd integral p_a^T sigma p_b: (element, a, c, b, d)."""
+    geo = np.einsum("eq,eqak,eqkl,eqbl->eab", wj, grads, stress, grads, optimize=True)
+    return geo[:, :, None, :, None] * np.eye(3)[None, None, :, None, :]
+
+
+def small_strain_stress(basis: Basis, young: float, poisson: float, u: np.ndarray) -> np.ndarray:
+    """sigma = lambda tr(eps) I + 2 mu eps, eps = (grad u + grad u^T)/2, at the quadrature points."""
+    lam, mu = lame(young, poisson)
+    G = _displacement_gradient(basis, _gradients(basis), u)
+    eps = 0.5 * (G + np.swapaxes(G, -1, -2))
+    return lam * np.trace(eps, axis1=2, axis2=3)[..., None, None] * np.eye(3) + 2 * mu * eps
+
+
+def stress_stiffness(basis: Basis, young: float, poisson: float, u: np.ndarray) -> sp.csr_matrix:
+    """K_sigma of the small-strain stress of ``u``: v^T K_sigma w = integral sigma : (grad v^T grad w),
+    linear in u (the geometric stiffness of a linear prestress)."""
+    grads = _gradients(basis)
+    ke = _geometric(grads, basis.dx, small_strain_stress(basis, young, poisson, u))
     n = ke.shape[1] * 3
     return _assemble_matrix(basis, ke.reshape(len(ke), n, n))
 

@@ -77,7 +77,7 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
     alpha = amplitude_grid(cfg)
     omega_stuck = target_stuck_frequency(structure, contacts, target_hz)
     backbone = epmc(structure, contacts, alpha, H=cfg["n_harmonics"], nt=cfg["n_time_samples"],
-                    omega_target=omega_stuck)
+                    omega_target=omega_stuck, tol=cfg.get("continuation_tolerance", 1e-8))
     res = eebm(backbone, zeta_s=cfg["structural_damping_ratio"])
     highest = highest_harmonic_fraction(backbone.model.modal, backbone.eta, backbone.omega)
     warn_truncation(highest, alpha)

@@ -1,0 +1,119 @@
+"""Tables of the fidelity study: per case its cost and errors, the chosen setting of each dial (the
+cheapest whose error is below the tolerance on every quantity and ring) and the campaign time.
+
+Cost is the chain's CPU time per geometry (static + reduction + dNNM, s; the wall time on an idle
+core) and its peak resident memory (MB). The campaign time at a fidelity is estimated as
+``n_geometries x chain CPU / n_cores`` (the geometries' chains dominate; docs/fidelity.md).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from .dials import DEFAULT, case_key, default_value, dial_rings, dials, rings, value_label
+from .quantities import gamma_at, relative_errors, user_quantities
+
+COST_KEYS = ("static_cpu_s", "reduction_cpu_s", "dnnm_cpu_s", "chain_cpu_s", "chain_time_s", "peak_rss_mb")
+
+
+def case_rows(config: dict, cases: dict) -> list[dict]:
+    """One row per (ring, dial, value): cost, user quantities and their relative errors against the
+    dial's finest value (``error_<quantity>``, ``error_max`` the largest). ``cases`` maps the case
+    keys of :func:`dials.dial_cases` to their dnnm datasets."""
+    fid = config["fidelity"]
+    levels = config["sensitivity"]["levels"]
+    max_level = config["exploration"]["optimum_max_level"]
+    gammas = gamma_at(cases[(next(iter(rings(fid))), DEFAULT, DEFAULT)], config["frf"]["target_amplitudes"])
+    rows = []
+    for dial, spec in dials(fid).items():
+        for ring in dial_rings(fid, dial):
+            labels = [value_label(v) for v in spec["values"]]
+            q = {lb: user_quantities(cases[case_key(config, ring, dial, lb)], levels, gammas, max_level)
+                 for lb in labels}
+            ref = q[labels[-1]]
+            for v, lb in zip(spec["values"], labels):
+                ds = cases[case_key(config, ring, dial, lb)]
+                err = relative_errors(q[lb], ref)
+                rows.append({"ring": ring, "dial": dial, "key": spec["key"], "value": v,
+                             "is_default": lb == value_label(default_value(config, dial)),
+                             "is_reference": lb == labels[-1],
+                             **{k: float(ds.attrs[k]) for k in COST_KEYS},
+                             "n_failed": int(np.sum(~np.isin(ds.status.values, (0, 3)))),
+                             **q[lb], **{f"error_{k}": e for k, e in err.items()},
+                             "error_max": max(err.values())})
+    return rows
+
+
+def choose(rows: list[dict], tolerance: float) -> dict:
+    """Per dial: the value of least chain CPU (largest over rings) whose ``error_max`` is below
+    ``tolerance`` on every ring (the reference value when none is)."""
+    out = {}
+    for dial in dict.fromkeys(r["dial"] for r in rows):
+        by_value: dict = {}
+        for r in (r for r in rows if r["dial"] == dial):
+            b = by_value.setdefault(r["value"], {"cpu": 0.0, "error": 0.0})
+            b["cpu"] = max(b["cpu"], r["chain_cpu_s"])
+            b["error"] = max(b["error"], 0.0 if r["is_reference"] else r["error_max"])
+        ok = [v for v, b in by_value.items() if b["error"] < tolerance]
+        out[dial] = min(ok, key=lambda v: by_value[v]["cpu"]) if ok else list(by_value)[-1]
+    return out
+
+
+def chain_cpu(rows: list[dict], settings: dict) -> dict:
+    """Per-geometry CPU (s) per stage at ``settings`` (dial -> value): the default case's stage times
+    scaled by each dial's ratio (its value's CPU over the default's, mean over rings) on the stages
+    it touches; the reduction also grows with the harmonics of the dNNM."""
+    default = [r for r in rows if r["is_default"]]
+    stages = {s: float(np.mean([r[f"{s}_cpu_s"] for r in default])) for s in ("static", "reduction", "dnnm")}
+    for dial, value in settings.items():
+        for s in ("reduction", "dnnm"):
+            num = [r[f"{s}_cpu_s"] for r in rows if r["dial"] == dial and r["value"] == value]
+            den = [r[f"{s}_cpu_s"] for r in rows if r["dial"] == dial and r["is_default"]]
+            if num and den:
+                stages[s] *= float(np.mean(num) / np.mean(den))
+    stages["chain"] = sum(stages.values())
+    return stages
+
+
+def campaign_hours(chain_cpu_s: float, n_geometries: int, n_cores: int) -> float:
+    """Estimated campaign wall time (h): the chains of ``n_geometries`` spread over ``n_cores``."""
+    return chain_cpu_s * n_geometries / n_cores / 3600.0
+
+
+def read_cases(paths: dict) -> dict:
+    """Case key -> dataset (loaded)."""
+    return {key: xr.load_dataset(p) for key, p in paths.items()}
+
+
+def campaign_summary(config: dict, rows: list[dict], n_geometries: int, n_cores: int) -> dict:
+    """Chosen settings and the chain CPU and campaign time at the current defaults, the chosen
+    settings and the converged reference (finest value of every dial)."""
+    fid = config["fidelity"]
+    chosen = choose(rows, fid["tolerance"])
+    current = {d: default_value(config, d) for d in dials(fid)}
+    reference = {d: spec["values"][-1] for d, spec in dials(fid).items()}
+    out = {"tolerance": fid["tolerance"], "chosen": chosen, "current": current, "reference": reference,
+           "chain_cpu_s": {}, "campaign_h": {}}
+    for name, settings in (("current", current), ("chosen", chosen), ("reference", reference)):
+        cpu = chain_cpu(rows, settings)
+        out["chain_cpu_s"][name] = cpu["chain"]
+        out["campaign_h"][name] = campaign_hours(cpu["chain"], n_geometries, n_cores)
+    return _plain(out)
+
+
+def pareto_points(surrogate_rows, chain_cpu_s: float, n_validation: int, n_cores: int):
+    """(design, n, campaign_h, error) of the training-set study: (n + n_validation) chains and the
+    fit, over ``n_cores``; the error is the validation RMS relative error of zeta_max."""
+    import pandas as pd
+
+    df = pd.DataFrame(surrogate_rows)
+    return pd.DataFrame({"design": df.design, "n": df.n, "error": df.error_zeta_max,
+                         "campaign_h": ((df.n + n_validation) * chain_cpu_s / n_cores + df.fit_cpu_s) / 3600.0})
+
+
+def _plain(obj):
+    """Numpy scalars to Python (YAML)."""
+    if isinstance(obj, dict):
+        return {k: _plain(v) for k, v in obj.items()}
+    return obj.item() if isinstance(obj, np.generic) else obj

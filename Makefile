@@ -31,6 +31,8 @@ studies: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --keep-going studies
 	cp results/studies/contact_calibration/*.csv docs/calibration/
 	cp results/studies/contact_calibration/*.png docs/figures/
+	cp results/studies/contact_state/*.csv docs/calibration/
+	cp results/studies/contact_state/*.png docs/figures/
 
 report: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --report results/report.html

@@ -21,7 +21,9 @@ The search (:func:`search`) varies the free parameters that move the static stat
 nominal radial clearance at rest (``geometry.ring.radial_clearance``), the normal contact stiffness
 per area (kt kept at the configured kt/kn) and the rim arm's radial thickness (the groove support).
 μ and kt do not move the static state; they and the clearance move the default ring's backbone,
-charted by :func:`backbone_sweep` with ``studies.contact_calibration``'s metrics.
+charted by :func:`backbone_sweep` with ``studies.contact_calibration``'s metrics. :func:`free_closure`
+gives the closure of every pair when the clearance exceeds the ring's growth (no pair touches): how
+far the ring would enter the groove, i.e. what the contact has to absorb, station by station.
 """
 
 from __future__ import annotations
@@ -33,10 +35,10 @@ from dataclasses import asdict, dataclass
 import numpy as np
 import xarray as xr
 
-REFERENCE_RINGS = {"default": (0.0, 0.0, 0.0), "kappa1=+1": (1.0, 0.0, 0.0),
-                   "kappa1=-1": (-1.0, 0.0, 0.0), "kappa2=+1": (0.0, 1.0, 0.0),
-                   "kappa2=-1": (0.0, -1.0, 0.0), "kappa3=-1": (0.0, 0.0, -1.0),
-                   "optimum (1,-1,-1)": (1.0, -1.0, -1.0)}
+from ringdamper.campaign import sampling
+
+# the paper's seven rings of Figs. 6, 11, 19 (the campaign's reference rings but kappa3 = +1)
+REFERENCE_RINGS = {label: k for label, k in sampling.REFERENCE_RINGS.items() if label != "kappa3=+1"}
 PAPER_ROWS = {
     "default": "N0 greatest at the centre; nodes near the sector boundaries open, with the largest gaps",
     "kappa1=+1": "more nodes in contact than the default; N0 more dispersed",
@@ -44,7 +46,7 @@ PAPER_ROWS = {
     "kappa2=+1": "N0 concentrated in the middle; the largest boundary gaps of the seven rings",
     "kappa2=-1": "N0 more dispersed than the default",
     "kappa3=-1": "the highest N0 of the seven, under the blade; the largest gaps at the outer nodes",
-    "optimum (1,-1,-1)": "more nodes in contact, higher N0 and smaller gaps than the default",
+    "paper optimum": "more nodes in contact, higher N0 and smaller gaps than the default",
 }
 CENTRE, OUTER = 1.0 / 3.0, 2.0 / 3.0   # |s| bounds of the central and outer thirds of the sector
 SIMILAR = 0.25                          # "similar" N0: peak pressures within 25 %
@@ -98,7 +100,7 @@ def score(v: dict[str, Variety]) -> dict[str, bool]:
     peak_all = max(x.peak_pressure for x in v.values())
     outer_all = max(x.outer_gap for x in v.values())
     k1p, k1m, k2p, k2m = v["kappa1=+1"], v["kappa1=-1"], v["kappa2=+1"], v["kappa2=-1"]
-    k3m, opt = v["kappa3=-1"], v["optimum (1,-1,-1)"]
+    k3m, opt = v["kappa3=-1"], v["paper optimum"]
     return {
         "default": bool(d.n0_position < 0.5 and d.peak_position <= CENTRE and d.open_fraction > 0
                         and d.outer_gap == d.max_gap),
@@ -111,7 +113,7 @@ def score(v: dict[str, Variety]) -> dict[str, bool]:
         "kappa2=-1": bool(k2m.concentration < d.concentration),
         "kappa3=-1": bool(k3m.peak_pressure == peak_all and k3m.peak_position <= CENTRE
                           and k3m.outer_gap > 0 and k3m.outer_gap == k3m.max_gap),
-        "optimum (1,-1,-1)": bool(opt.open_fraction < d.open_fraction
+        "paper optimum": bool(opt.open_fraction < d.open_fraction
                                   and opt.peak_pressure > d.peak_pressure and opt.max_gap < d.max_gap),
     }
 
@@ -178,3 +180,62 @@ def search(config: dict) -> tuple[list[dict], list[dict]]:
             design_rows.append({**key, "rows_reproduced": int(sum(ok.values())),
                                 **{f"ok {label}": ok[label] for label in REFERENCE_RINGS}})
     return ring_rows, design_rows
+
+
+def best_design(design_rows: list[dict], config: dict) -> dict:
+    """The design reproducing the most rows; among ties the cheapest change from ``config``: the
+    smallest clearance, then the configured arm, then kn nearest (in log) to the configured one."""
+    kn0 = config["contact"]["normal_stiffness_per_area"]
+    arm0 = config["geometry"]["disk"]["arm_thickness"]
+    return min(design_rows, key=lambda r: (-r["rows_reproduced"], r["radial_clearance"],
+                                           abs(r["arm_thickness"] - arm0),
+                                           abs(np.log(r["normal_stiffness_per_area"] / kn0))))
+
+
+def design_states(config: dict, design: dict) -> dict[str, xr.Dataset]:
+    """Static states of the seven rings for one design row (label -> static.nc dataset)."""
+    cfg = design_config(config, 0.0, design["normal_stiffness_per_area"], design["arm_thickness"])
+    states = ring_states(cfg, [(design["radial_clearance"], design["normal_stiffness_per_area"])])
+    return {label: ds[0] for label, ds in states.items()}
+
+
+def free_closure(config: dict, clearance: float) -> xr.Dataset:
+    """Static state of the default ring with a clearance ``clearance`` above its growth relative to
+    the groove: every pair open, and ``initial_gap - gap`` is the closure d_n each pair would need."""
+    from ringdamper.fem.model import build_model
+    from ringdamper.geometry.sector import build_sector
+    from ringdamper.static.stage import solve_static, static_dataset
+
+    cfg = copy.deepcopy(config)
+    cfg["geometry"]["ring"]["radial_clearance"] = float(clearance)
+    model = build_model(build_sector(cfg, REFERENCE_RINGS["default"]), cfg)
+    result, prob = solve_static(model, cfg)
+    if result.status != 0 or np.any(result.in_contact):
+        raise RuntimeError(f"clearance {clearance} m does not leave every pair open: {result.reason}, "
+                           f"{int(np.sum(result.in_contact))} in contact")
+    return static_dataset(model, result, prob, REFERENCE_RINGS["default"], cfg["operation"]["speed_rpm"])
+
+
+def backbone_sweep(config: dict, reduced_path, target_hz: float) -> list[tuple[dict, dict]]:
+    """Default-ring backbones (``contact_calibration.run_trial``, its α grid) for each clearance of
+    ``studies.contact_state.backbone_clearance`` at H = 1, with the configured contact and with each
+    friction coefficient of ``backbone_friction``: [(row, curve)]. The reduced model is contact- and
+    clearance-free, so the default ring's reduced.nc serves every trial."""
+    from ringdamper.nonlinear.normalisation import normalised_frequency
+    from ringdamper.studies.contact_calibration import DefaultRing, run_trial
+
+    grid = config["studies"]["contact_state"]
+    alpha = config["studies"]["contact_calibration"]["amplitudes"]
+    out = []
+    for clearance in grid["backbone_clearance"]:
+        cfg = copy.deepcopy(config)
+        cfg["geometry"]["ring"]["radial_clearance"] = float(clearance)
+        ring = DefaultRing(cfg, reduced_path, target_hz)
+        for mu in grid["backbone_friction"]:
+            contact = dict(cfg["contact"], friction_coefficient=float(mu))
+            row, ds = run_trial(ring, contact, 1, alpha)
+            curve = {"q": ds.q_res_z.values, "zeta": ds.zeta.values, "gamma": ds.gamma.values,
+                     "omega0": normalised_frequency(2 * np.pi * ds.frequency.values, ds.attrs["omega_stuck"]),
+                     "status": ds.status.values}
+            out.append(({"radial_clearance": float(clearance), **row}, curve))
+    return out

@@ -15,7 +15,7 @@ from ringdamper.fem.model import build_model
 from ringdamper.fem.prestress import rpm_to_rad_s
 from ringdamper.geometry.sector import build_sector
 from ringdamper.static.stage import solve_static, static_dataset
-from ringdamper.studies.contact_state import CENTRE, OUTER, contact_variety
+from ringdamper.studies.contact_state import CENTRE, REFERENCE_RINGS, Variety, best_design, contact_variety, score
 
 A = 5.0e-3  # m, slope of the groove profile per unit |s|
 
@@ -68,3 +68,36 @@ def test_uniform_clearance_opens_all_pairs_beyond_the_free_growth(ring):
     opened, result = _variety(cfg, model, half, 1.1 * u)
     assert opened.open_fraction == 1.0 and opened.mean_pressure == 0.0
     assert result.gap == pytest.approx(0.1 * u, abs=0.02 * u)         # thin-ring growth to 2 %
+
+
+def _v(open_fraction, max_gap, outer_gap, peak, concentration, n0_position, peak_position):
+    return Variety(n_pairs=70, open_fraction=open_fraction, max_gap=max_gap, gap_position=0.8,
+                   centre_gap=0.0, outer_gap=outer_gap, peak_pressure=peak, mean_pressure=peak / concentration,
+                   concentration=concentration, n0_position=n0_position, peak_position=peak_position)
+
+
+PAPER_LIKE = {  # a state set written from the paper's table (gaps in um, pressures in MPa)
+    "default": _v(0.3, 2.0, 2.0, 1.0, 2.0, 0.4, 0.0),
+    "kappa1=+1": _v(0.2, 1.0, 1.0, 1.1, 1.5, 0.45, 0.0),
+    "kappa1=-1": _v(0.4, 3.0, 3.0, 1.1, 2.2, 0.4, 0.0),
+    "kappa2=+1": _v(0.35, 4.0, 4.0, 1.8, 3.0, 0.3, 0.0),
+    "kappa2=-1": _v(0.3, 2.0, 2.0, 0.9, 1.6, 0.5, 0.5),
+    "kappa3=-1": _v(0.3, 3.0, 3.0, 2.0, 2.5, 0.3, 0.0),
+    "paper optimum": _v(0.1, 1.0, 1.0, 1.5, 1.8, 0.45, 0.0),
+}
+
+
+def test_score_reads_the_paper_table_row_by_row():
+    assert REFERENCE_RINGS.keys() == PAPER_LIKE.keys()
+    assert all(score(PAPER_LIKE).values())
+    broken = dict(PAPER_LIKE, **{"kappa3=-1": _v(0.3, 3.0, 3.0, 2.0, 2.5, 0.3, 0.5)})  # peak off-centre
+    assert [k for k, ok in score(broken).items() if not ok] == ["kappa3=-1"]
+    uniform = {k: _v(0.0, 0.0, 0.0, 1.0, 1.0, 0.5, 1.0) for k in PAPER_LIKE}    # all closed, uniform
+    assert not any(score(uniform).values())
+
+
+def test_best_design_is_the_cheapest_of_the_most_reproducing(campaign_config):
+    rows = [{"arm_thickness": a, "radial_clearance": c, "normal_stiffness_per_area": k, "rows_reproduced": n}
+            for a, c, k, n in [(0.006, 3e-5, 2e11, 2), (0.009, 2e-5, 1e12, 2), (0.006, 2e-5, 1e12, 2),
+                               (0.006, 0.0, 7e10, 1)]]
+    assert best_design(rows, campaign_config) is rows[2]

@@ -10,6 +10,7 @@ damping (the tangential motion is zero). The AFT error of the kink is O(Nt⁻²)
 ≈ 1e-6 relative on ω.
 """
 import numpy as np
+import pytest
 
 from ringdamper.nonlinear.continuation import Status
 from ringdamper.nonlinear.epmc import epmc
@@ -19,6 +20,9 @@ from ringdamper.nonlinear.structure import Structure
 M, K, KN, GAP = 2.0, 100.0, 400.0, 1.0e-3
 
 
+# epmc.linear_limit divides mu N0 = 0 by kt |d_t| = 0 for these pairs without preload nor tangential
+# motion (0/0 -> NaN, then discarded: only preloaded pairs can slip); the start it finds is g / |d_n|.
+@pytest.mark.filterwarnings("ignore:invalid value encountered in divide:RuntimeWarning")
 def test_pairs_open_at_rest_close_at_amplitude():
     B = np.array([[1.0], [0.0], [0.0], [-1.0], [0.0], [0.0]])       # (d_n, t1, t2) of both pairs
     st = Structure.real(np.array([[M]]), np.array([[K]]), B, np.array([1.0]), np.array([1.0]), H=1)

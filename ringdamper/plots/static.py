@@ -101,12 +101,14 @@ def _station_means(static, half_angle: float):
 
 
 def plot_free_closure(states: dict, configured: str, half_angle: float, path) -> None:
-    """Closure d_n = initial gap - gap (um) of all-open static states (label -> dataset) against
-    the angle from the sector centre: every pair of the ``configured`` state, one line per axial
-    position (left), and each state's station means relative to the centre station (right). It is
-    how the groove and the ring move apart under the centrifugal load, what a contact would absorb."""
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4))
-    static = states[configured]
+    """Closure d_n = initial gap - gap (um) of all-open static states (label -> (static dataset,
+    underside imprint)) against the angle from the sector centre: every pair of the ``configured``
+    state, one line per axial position (left); each state's station means relative to the centre
+    station (middle); the radial displacement of the support's underside on the sector boundary
+    minus under the blade, against z (right). It is how the groove and the ring move apart under the
+    centrifugal load, what a contact would absorb, and how little of it is sector-periodic."""
+    fig, (ax, bx, cx) = plt.subplots(1, 3, figsize=(15, 4.2))
+    static = states[configured][0]
     s = np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle
     closure = 1e6 * (static.initial_gap.values - static.gap.values)
     z = np.round(1e3 * static.z.values, 3)
@@ -116,14 +118,21 @@ def plot_free_closure(states: dict, configured: str, half_angle: float, path) ->
         ax.plot(s[order], closure[order], marker="o", ms=3, label=f"z = {zv:g} mm")
     ax.set_ylabel("closure d_n without contact (um)")
     ax.set_title(f"{configured}: every pair (spread {np.ptp(closure):.2f} um)", fontsize=8)
-    for label, ds in states.items():
+    for label, (ds, imprint) in states.items():
         stations, mean = _station_means(ds, half_angle)
         bx.plot(stations, mean - mean[0], marker="o", ms=3,
                 label=f"{label} (spread {np.ptp(mean):.3f} um)")
+        cx.plot(1e3 * imprint.z.values, 1e6 * (imprint.boundary.values - imprint.centre.values),
+                marker="o", ms=3, label=label)
     bx.set_ylabel("station mean closure - centre station (um)")
     bx.set_title("circumferential variation (what the default ring can feel)", fontsize=8)
     for a in (ax, bx):
         a.set_xlabel("|theta| / theta_h (0: under the blade, 1: sector boundary)")
+    cx.axvspan(1e3 * static.z.values.min(), 1e3 * static.z.values.max(), color="0.85", label="ring band")
+    cx.set_xlabel("z (mm): rim, then the arm behind it")
+    cx.set_ylabel("u_r(boundary) - u_r(under the blade) (um)")
+    cx.set_title("support underside at the contact radius: sector-periodic part", fontsize=8)
+    for a in (ax, bx, cx):
         a.legend(fontsize=7)
         a.grid(alpha=0.3)
     fig.tight_layout()

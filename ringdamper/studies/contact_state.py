@@ -199,9 +199,10 @@ def design_states(config: dict, design: dict) -> dict[str, xr.Dataset]:
     return {label: ds[0] for label, ds in states.items()}
 
 
-def free_closure(config: dict, clearance: float) -> xr.Dataset:
+def free_closure(config: dict, clearance: float) -> tuple[xr.Dataset, xr.Dataset]:
     """Static state of the default ring with a clearance ``clearance`` above its growth relative to
-    the groove: every pair open, and ``initial_gap - gap`` is the closure d_n each pair would need."""
+    the groove: every pair open, and ``initial_gap - gap`` is the closure d_n each pair would need;
+    with the :func:`underside_imprint` of the same solve."""
     from ringdamper.fem.model import build_model
     from ringdamper.geometry.sector import build_sector
     from ringdamper.static.stage import solve_static, static_dataset
@@ -213,7 +214,31 @@ def free_closure(config: dict, clearance: float) -> xr.Dataset:
     if result.status != 0 or np.any(result.in_contact):
         raise RuntimeError(f"clearance {clearance} m does not leave every pair open: {result.reason}, "
                            f"{int(np.sum(result.in_contact))} in contact")
-    return static_dataset(model, result, prob, REFERENCE_RINGS["default"], cfg["operation"]["speed_rpm"])
+    u = (prob.T @ result.u).reshape(-1, 3)
+    return (static_dataset(model, result, prob, REFERENCE_RINGS["default"], cfg["operation"]["speed_rpm"]),
+            underside_imprint(model, u, cfg["geometry"]["disk"]["contact_radius"]))
+
+
+def underside_imprint(model, u: np.ndarray, radius: float) -> xr.Dataset:
+    """Radial displacement of the blisk nodes on the cylinder r = ``radius`` (the rim's underside and,
+    for the default ring, the groove), under the sector centre (the blade) and on its boundary, per
+    axial position z: the sector-periodic part of the support's deformation is their difference."""
+    from ringdamper.geometry.sector import BODY_RING, MERGE_TOL
+    from ringdamper.io import variable
+
+    x = model.nodes
+    r = np.hypot(x[:, 0], x[:, 1])
+    theta = np.abs(np.arctan2(x[:, 1], x[:, 0]))
+    u_r = (u[:, 0] * x[:, 0] + u[:, 1] * x[:, 1]) / r
+    on = np.flatnonzero((model.node_body != BODY_RING) & (np.abs(r - radius) < MERGE_TOL))
+    zs = np.unique(np.round(x[on, 2], 9))
+    centre, boundary = np.empty(zs.size), np.empty(zs.size)
+    for k, z in enumerate(zs):
+        plane = on[np.abs(x[on, 2] - z) < MERGE_TOL]
+        centre[k], boundary[k] = u_r[plane[np.argmin(theta[plane])]], u_r[plane[np.argmax(theta[plane])]]
+    return xr.Dataset({"centre": variable("z", centre, "m", "radial displacement under the blade"),
+                       "boundary": variable("z", boundary, "m", "radial displacement on the sector boundary")},
+                      coords={"z": variable("z", zs, "m", "axial position")})
 
 
 def backbone_sweep(config: dict, reduced_path, target_hz: float) -> list[tuple[dict, dict]]:

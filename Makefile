@@ -39,6 +39,8 @@ studies: $(STAMP)
 	cp results/studies/contact_calibration/*.csv results/studies/contact_calibration/tables.md docs/calibration/
 	cp results/studies/hub_calibration.yaml results/studies/mesh_convergence.csv results/studies/reduction_convergence.md docs/calibration/
 	cp results/studies/contact_calibration/*.png docs/figures/
+	cp results/studies/contact_state/*.csv docs/calibration/
+	cp results/studies/contact_state/*.png docs/figures/
 
 # the fidelity study (config.yaml `fidelity:`; not part of `campaign`), then its committed figures and tables
 fidelity: $(STAMP)

@@ -47,3 +47,94 @@ def plot_contact_maps(datasets: dict, path) -> None:
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def _lines(ax, rows, x, y, key, label_of, scale=1.0, **style):
+    """One line of ``y`` against ``x`` (x in um) per distinct ``key`` value of ``rows``, coloured by
+    the value's rank."""
+    for k, value in enumerate(sorted(dict.fromkeys(r[key] for r in rows), key=str)):
+        sel = sorted((r for r in rows if r[key] == value), key=lambda r: r[x])
+        ax.plot([1e6 * r[x] for r in sel], [scale * r[y] for r in sel], marker="o", ms=3,
+                color=f"C{k}", label=label_of(value), **style)
+
+
+def plot_variety_search(design_rows: list, ring_rows: list, kn: float, arm: float, path) -> None:
+    """The contact-state search: rows of the paper's table reproduced against the radial clearance
+    (one line per kn / area, solid for arm thickness ``arm``, dashed and dotted for the others), and
+    the variety metric of each ring against the clearance at ``kn`` and ``arm``."""
+    fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
+    ax = axes[0, 0]
+    styles = iter(["-", "--", ":", "-."])
+    for a in sorted(dict.fromkeys(r["arm_thickness"] for r in design_rows), key=lambda a: a != arm):
+        _lines(ax, [r for r in design_rows if r["arm_thickness"] == a], "radial_clearance",
+               "rows_reproduced", "normal_stiffness_per_area",
+               lambda v, a=a: f"kn {v:.0e} N/m3, arm {1e3 * a:g} mm", ls=next(styles))
+    ax.set_ylabel("rows of the paper's table reproduced (of 7)")
+    ax.set_ylim(-0.2, 7.2)
+    ax.legend(fontsize=6, ncol=2)
+    at = [r for r in ring_rows if r["normal_stiffness_per_area"] == kn and r["arm_thickness"] == arm]
+    panels = [("open_fraction", 1.0, "fraction of pairs open"),
+              ("concentration", 1.0, "peak / mean pressure"),
+              ("n0_position", 1.0, "N0 centre of mass |theta| / theta_h"),
+              ("max_gap", 1e6, "largest gap (um)"),
+              ("gap_position", 1.0, "gap-weighted |theta| / theta_h")]
+    for ax, (y, scale, label) in zip(axes.ravel()[1:], panels):
+        _lines(ax, at, "radial_clearance", y, "ring", str, scale)
+        ax.set_ylabel(label)
+    axes[0, 2].set_yscale("log")
+    axes[0, 1].legend(fontsize=7, title=f"kn {kn:.0e} N/m3, arm {1e3 * arm:g} mm", title_fontsize=7)
+    for ax in axes.ravel():
+        ax.set_xlim(axes[0, 0].get_xlim())
+        ax.set_xlabel("radial clearance at rest (um)")
+        ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def _station_means(static, half_angle: float):
+    """(|theta| / theta_h of each theta station, mean closure d_n (um) of its pairs)."""
+    s = np.round(np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle, 9)
+    closure = 1e6 * (static.initial_gap.values - static.gap.values)
+    stations, station = np.unique(s, return_inverse=True)
+    return stations, np.bincount(station, closure) / np.bincount(station)
+
+
+def plot_free_closure(states: dict, configured: str, half_angle: float, path) -> None:
+    """Closure d_n = initial gap - gap (um) of all-open static states (label -> (static dataset,
+    underside imprint)) against the angle from the sector centre: every pair of the ``configured``
+    state, one line per axial position (left); each state's station means relative to the centre
+    station (middle); the radial displacement of the support's underside on the sector boundary
+    minus under the blade, against z (right). It is how the groove and the ring move apart under the
+    centrifugal load, what a contact would absorb, and how little of it is sector-periodic."""
+    fig, (ax, bx, cx) = plt.subplots(1, 3, figsize=(15, 4.2))
+    static = states[configured][0]
+    s = np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle
+    closure = 1e6 * (static.initial_gap.values - static.gap.values)
+    z = np.round(1e3 * static.z.values, 3)
+    for zv in np.unique(z):
+        sel = np.flatnonzero(z == zv)
+        order = sel[np.argsort(s[sel])]
+        ax.plot(s[order], closure[order], marker="o", ms=3, label=f"z = {zv:g} mm")
+    ax.set_ylabel("closure d_n without contact (um)")
+    ax.set_title(f"{configured}: every pair (spread {np.ptp(closure):.2f} um)", fontsize=8)
+    for label, (ds, imprint) in states.items():
+        stations, mean = _station_means(ds, half_angle)
+        bx.plot(stations, mean - mean[0], marker="o", ms=3,
+                label=f"{label} (spread {np.ptp(mean):.3f} um)")
+        cx.plot(1e3 * imprint.z.values, 1e6 * (imprint.boundary.values - imprint.centre.values),
+                marker="o", ms=3, label=label)
+    bx.set_ylabel("station mean closure - centre station (um)")
+    bx.set_title("circumferential variation (what the default ring can feel)", fontsize=8)
+    for a in (ax, bx):
+        a.set_xlabel("|theta| / theta_h (0: under the blade, 1: sector boundary)")
+    cx.axvspan(1e3 * static.z.values.min(), 1e3 * static.z.values.max(), color="0.85", label="ring band")
+    cx.set_xlabel("z (mm): rim, then the arm behind it")
+    cx.set_ylabel("u_r(boundary) - u_r(under the blade) (um)")
+    cx.set_title("support underside at the contact radius: sector-periodic part", fontsize=8)
+    for a in (ax, bx, cx):
+        a.legend(fontsize=7)
+        a.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)

@@ -3,7 +3,8 @@
 The sector (blisk + ring, linear elastic) is solved at operating speed with the ND-0 cyclic
 constraint u_R = R_z(2 pi / N) u_L (``fem.cyclic``), the bore clamped, the centrifugal body force
 f = rho Omega^2 (x, y, 0) and the spin softening -Omega^2 M_r (the centrifugal force follows the
-displaced material). Contact: one node-to-node pair per ring upper-surface node, normal law of
+displaced material). Contact: one node-to-node pair per ring upper-surface node, initial gap from the ring's nominal
+radial clearance (``geometry.ring.radial_clearance``, :func:`clearance_gaps`), normal law of
 ``static.method`` (penalty kn x area: the law of the dynamic element, so N0 is consistent with it;
 or exact unilateral contact), tangential sticking springs kt x area that make the ring's rotation
 about Z and its axial translation determinate. Geometric nonlinearity is neglected: the strains are
@@ -41,6 +42,17 @@ class StaticProblem:
     T: sp.csr_matrix
     kn: np.ndarray
     kt: np.ndarray
+    g0: np.ndarray
+
+
+def clearance_gaps(model: SectorModel, clearance: float) -> np.ndarray:
+    """Initial gap of every pair (m) for a nominal radial clearance ``clearance`` (groove radius minus
+    ring radius at rest): the ring shrunk radially by c leaves the gap g0 = c (n . e_r) along each
+    pair's normal n. The mesh keeps coincident pair nodes: c (tens of um) is small beside the
+    elements (mm), as the small-displacement contact frames already assume."""
+    p = model.pairs.position[:, :2]
+    e_r = p / np.linalg.norm(p, axis=1)[:, None]
+    return clearance * np.sum(model.pairs.frame[:, 0, :2] * e_r, axis=1)
 
 
 def static_problem(model: SectorModel, config: dict, speed_rpm: float,
@@ -56,20 +68,27 @@ def static_problem(model: SectorModel, config: dict, speed_rpm: float,
     f = T.T @ centrifugal_load(model.basis, model.material["density"], omega)
     G = (relative_displacement_operator(model) @ T).tocsr()
     kn, kt = pair_stiffness(model.pairs.area, config["contact"])
-    return StaticProblem(K=K, f=f, G=G, T=T, kn=kn, kt=kt)
+    g0 = clearance_gaps(model, config["geometry"]["ring"]["radial_clearance"])
+    return StaticProblem(K=K, f=f, G=G, T=T, kn=kn, kt=kt, g0=g0)
 
 
 def solve_static(model: SectorModel, config: dict, speed_rpm: float | None = None,
-                 rigid_blisk: bool = False, kn=None) -> tuple[StaticContactResult, StaticProblem]:
-    """Solve the static contact problem; ``kn`` overrides the configured normal stiffness."""
+                 rigid_blisk: bool = False, kn=None, g0=None) -> tuple[StaticContactResult, StaticProblem]:
+    """Solve the static contact problem; ``kn`` and ``g0`` (per pair, m) override the configured
+    normal stiffness and the initial gaps of the configured clearance."""
     speed = config["operation"]["speed_rpm"] if speed_rpm is None else speed_rpm
     prob = static_problem(model, config, speed, rigid_blisk)
     if kn is not None:
         prob.kn = np.broadcast_to(np.asarray(kn, dtype=float), prob.kn.shape).copy()
-    s = config["static"]
-    result = solve_static_contact(prob.K, prob.f, prob.G, np.zeros(len(model.pairs)), prob.kn, prob.kt,
-                                  method=s["method"], tol=s["tolerance"], max_iter=s["max_iterations"])
-    return result, prob
+    if g0 is not None:
+        prob.g0 = np.broadcast_to(np.asarray(g0, dtype=float), prob.g0.shape).copy()
+    return solve_problem(prob, config["static"]), prob
+
+
+def solve_problem(prob: StaticProblem, settings: dict) -> StaticContactResult:
+    """Solve an assembled problem with the ``static:`` settings (method, tolerance, max_iterations)."""
+    return solve_static_contact(prob.K, prob.f, prob.G, prob.g0, prob.kn, prob.kt, method=settings["method"],
+                                tol=settings["tolerance"], max_iter=settings["max_iterations"])
 
 
 #: static.nc, declared once: name -> (dims, units, long_name). A failed geometry's file has the same
@@ -81,6 +100,7 @@ STATIC_VARIABLES = {
     "N0": ("pair", "N", "static normal contact force (preload)"),
     "gap": ("pair", "m", "static normal gap"),
     "penetration": ("pair", "m", "penalty penetration"),
+    "initial_gap": ("pair", "m", "normal gap at rest (radial clearance)"),
     "in_contact": ("pair", "1", "1 if N0 > 0, 0 if not, -1 without a solution"),
     "tangential_force": (("pair", "direction"), "N",
                          "static tangential force of the sticking springs (t1, t2)"),
@@ -109,7 +129,7 @@ def static_dataset(model: SectorModel, result: StaticContactResult, prob: Static
     finite = np.all(np.isfinite(result.N0))
     values = {
         "x": pairs.position[:, 0], "y": pairs.position[:, 1], "z": pairs.position[:, 2],
-        "N0": result.N0, "gap": result.gap, "penetration": result.penetration,
+        "N0": result.N0, "gap": result.gap, "penetration": result.penetration, "initial_gap": prob.g0,
         "in_contact": result.in_contact.astype(np.int8),
         "tangential_force": (np.column_stack([np.zeros(m), result.tangential]) if finite
                              else np.full((m, 3), np.nan)),

@@ -101,3 +101,18 @@ def test_tip_node_is_the_leading_edge_blade_tip(campaign_config):
     blade = campaign_config["geometry"]["blade"]
     assert np.hypot(x[0], x[1]) == pytest.approx(blade["tip_radius"], abs=1e-5)
     assert x[2] == pytest.approx(-blade["chord"] / 2, abs=1e-12)
+
+
+@pytest.mark.parametrize("value", [-1e-6, 2e-3])
+def test_radial_clearance_out_of_range_names_the_field(campaign_config, value):
+    """An interference (negative clearance) or a ring loose by millimetres is refused before any
+    meshing, naming the field and the allowed range."""
+    import copy
+
+    from ringdamper.config import ConfigError, validate_config
+
+    cfg = copy.deepcopy(campaign_config)
+    cfg["geometry"]["ring"]["radial_clearance"] = value
+    with pytest.raises(ConfigError) as err:
+        validate_config(cfg)
+    assert "geometry.ring.radial_clearance" in str(err.value) and "allowed [0.0, 0.001]" in str(err.value)

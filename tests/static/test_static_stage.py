@@ -152,3 +152,40 @@ def test_a_failed_static_file_has_the_variables_of_a_solved_one(small_config, tm
             assert np.all(var.values == -1)
         else:
             assert np.all(np.isnan(var.values)), name
+
+
+@pytest.mark.parametrize("method", ["penalty", "lagrange"])
+def test_kkt_is_exact_with_pairs_open(campaign_config, method):
+    """A radial clearance of 38 um on kappa2 = +1 opens part of the pairs (about 0.6 of them): the
+    returned state is still exactly complementary (docs/testing.md), open pairs carry gap = g0 - d_n,
+    closed ones the normal law, and the ring is in equilibrium."""
+    cfg = copy.deepcopy(campaign_config)
+    cfg["static"]["method"] = method
+    cfg["geometry"]["ring"]["radial_clearance"] = 38e-6
+    model = _model(cfg, (0, 1, 0))
+    result, prob = solve_static(model, cfg)
+    assert result.status == 0, result.reason
+    closed = result.in_contact
+    assert 0 < closed.sum() < closed.size
+    assert np.all(result.gap[closed] == 0.0) and np.all(result.N0[~closed] == 0.0)
+    assert np.all(result.N0 >= 0) and np.all(result.gap >= 0)
+    d_n = result.relative_displacement[:, 0]
+    scale = np.max(np.abs(result.u))                               # m, round-off of d_n is eps x this
+    assert np.all(prob.g0[~closed] - d_n[~closed] > 0)
+    assert result.gap[~closed] == pytest.approx(prob.g0[~closed] - d_n[~closed], abs=1e-12 * scale)
+    if method == "penalty":
+        assert result.N0[closed] == pytest.approx(prob.kn[closed] * (d_n[closed] - prob.g0[closed]), rel=1e-10)
+    else:
+        assert np.max(np.abs(d_n[closed] - prob.g0[closed])) <= 1e-9 * scale
+    lam = np.column_stack([result.N0, result.tangential]).ravel()
+    residual = prob.K @ result.u + prob.G.T @ lam - prob.f
+    assert np.linalg.norm(residual) <= 1e-8 * np.linalg.norm(prob.f)
+
+
+def test_clearance_gap_lies_along_the_pair_normal(campaign_config):
+    """g0 = c (n . e_r): c on the cylindrical default ring, less on the flanks of kappa1's bump."""
+    from ringdamper.static.stage import clearance_gaps
+
+    assert clearance_gaps(_model(campaign_config), 2e-5) == pytest.approx(2e-5, rel=1e-12)
+    g0 = clearance_gaps(_model(campaign_config, (1, 0, 0)), 2e-5)
+    assert np.all(g0 <= 2e-5 * (1 + 1e-12)) and g0.min() < 0.99 * 2e-5

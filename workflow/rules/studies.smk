@@ -12,6 +12,8 @@ rule studies:
                stage=("coarse", "refine", "harmonics_A", "harmonics_B")),
         f"{STUDIES}/contact_calibration/calibration_default_backbone.png",
         f"{STUDIES}/contact_calibration/tables.md",
+        f"{STUDIES}/contact_state/contact_state_designs.csv",
+        f"{STUDIES}/contact_state/contact_state_backbone.csv",
 
 
 rule hub_calibration:
@@ -106,3 +108,38 @@ rule contact_calibration_tables:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_contact_tables.py"
+
+
+rule contact_state:
+    output:
+        rings=f"{STUDIES}/contact_state/contact_state_rings.csv",
+        designs=f"{STUDIES}/contact_state/contact_state_designs.csv",
+        search=report(f"{STUDIES}/contact_state/contact_state_search.png", category="Studies"),
+        maps_configured=f"{STUDIES}/contact_state/contact_state_maps_configured.png",
+        maps_best=f"{STUDIES}/contact_state/contact_state_maps_best.png",
+        closure=f"{STUDIES}/contact_state/contact_state_free_closure.png",
+    log:
+        f"{RESULTS}/logs/studies/contact_state.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/studies/contact_state.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/study_contact_state.py"
+
+
+rule contact_state_backbone:
+    input:
+        reduced=f"{RESULTS}/geometry/{DEFAULT_GID}/reduced.nc",
+        resonance=f"{RESULTS}/modal/resonance.yaml",
+    output:
+        table=f"{STUDIES}/contact_state/contact_state_backbone.csv",
+        figure=report(f"{STUDIES}/contact_state/contact_state_backbone.png", category="Studies"),
+    log:
+        f"{RESULTS}/logs/studies/contact_state_backbone.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/studies/contact_state_backbone.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/study_contact_state_backbone.py"

@@ -1,0 +1,103 @@
+"""Contact-variety metric (ringdamper.studies.contact_state) on analytic contact states.
+
+A ring on a rigid groove: the free ring grows by u = rho Omega^2 R^3 / E (thin ring, 2 % with
+nu = 0.33: tests/static/test_static_stage.py). A uniform radial clearance below u closes every pair,
+above it opens every pair with the gap c - u; a groove whose radius exceeds the ring's by
+a (|s| - 1/3) outside the sector's central third (or a (1/3 - |s|) inside it), with a = 5 mm far
+above the ring's displacement (below u), leaves exactly those pairs open, with gaps in [g0 - u, g0].
+"""
+import copy
+
+import numpy as np
+import pytest
+
+from ringdamper.fem.model import build_model
+from ringdamper.fem.prestress import rpm_to_rad_s
+from ringdamper.geometry.sector import build_sector
+from ringdamper.static.stage import solve_static, static_dataset
+from ringdamper.studies.contact_state import CENTRE, REFERENCE_RINGS, Variety, best_design, contact_variety, score
+
+A = 5.0e-3  # m, slope of the groove profile per unit |s|
+
+
+@pytest.fixture(scope="module")
+def ring(campaign_config):
+    cfg = copy.deepcopy(campaign_config)
+    model = build_model(build_sector(cfg, (0.0, 0.0, 0.0)), cfg)
+    half = np.pi / cfg["geometry"]["n_sectors"]
+    s = np.round(np.abs(np.arctan2(model.pairs.position[:, 1], model.pairs.position[:, 0])) / half, 9)
+    omega = rpm_to_rad_s(cfg["operation"]["speed_rpm"])
+    g = cfg["geometry"]
+    radius = g["disk"]["contact_radius"] - g["ring"]["thickness"] / 2
+    u = cfg["material"]["density"] * omega**2 * radius**3 / cfg["material"]["young_modulus"]
+    return cfg, model, half, s, u
+
+
+def _variety(cfg, model, half, g0):
+    result, prob = solve_static(model, cfg, rigid_blisk=True, g0=g0)
+    assert result.status == 0, result.reason
+    return contact_variety(static_dataset(model, result, prob, (0, 0, 0), 2081.0), half), result
+
+
+@pytest.mark.parametrize("profile", ["outer", "centre"])
+def test_groove_profile_gives_the_analytic_open_set(ring, profile):
+    cfg, model, half, s, u = ring
+    g0 = A * (np.maximum(s - CENTRE, 0.0) if profile == "outer" else np.maximum(CENTRE - s, 0.0))
+    v, result = _variety(cfg, model, half, g0)
+    g0[g0 < 1e-6 * A] = 0.0                                         # the stations at |s| = 1/3 touch
+    expected_open = g0 > 0
+    assert np.array_equal(~result.in_contact, expected_open)
+    assert v.open_fraction == pytest.approx(expected_open.mean(), abs=1e-15)
+    assert v.gap_position == pytest.approx(np.sum(g0 * s) / np.sum(g0), abs=0.01)  # gaps = g0 - O(um)
+    assert np.all(result.gap[expected_open] <= g0[expected_open])
+    assert np.all(result.gap[expected_open] >= g0[expected_open] - 1.02 * u)
+    assert v.max_gap == pytest.approx(g0.max(), rel=0.01)
+    if profile == "outer":
+        assert v.centre_gap == 0.0 and v.outer_gap == v.max_gap
+        assert v.n0_position <= CENTRE and v.peak_position <= CENTRE
+    else:
+        assert v.outer_gap == 0.0 and v.centre_gap == v.max_gap
+        assert v.n0_position >= CENTRE and v.peak_position >= CENTRE - 1e-6
+
+
+def test_uniform_clearance_opens_all_pairs_beyond_the_free_growth(ring):
+    cfg, model, half, s, u = ring
+    closed, _ = _variety(cfg, model, half, 0.9 * u)
+    assert closed.open_fraction == 0.0 and closed.max_gap == 0.0
+    assert closed.concentration == pytest.approx(1.0, abs=0.05)       # axisymmetric: uniform pressure
+    opened, result = _variety(cfg, model, half, 1.1 * u)
+    assert opened.open_fraction == 1.0 and opened.mean_pressure == 0.0
+    assert result.gap == pytest.approx(0.1 * u, abs=0.02 * u)         # thin-ring growth to 2 %
+
+
+def _v(open_fraction, max_gap, outer_gap, peak, concentration, n0_position, peak_position):
+    return Variety(n_pairs=70, open_fraction=open_fraction, max_gap=max_gap, gap_position=0.8,
+                   centre_gap=0.0, outer_gap=outer_gap, peak_pressure=peak, mean_pressure=peak / concentration,
+                   concentration=concentration, n0_position=n0_position, peak_position=peak_position)
+
+
+PAPER_LIKE = {  # a state set written from the paper's table (gaps in um, pressures in MPa)
+    "default": _v(0.3, 2.0, 2.0, 1.0, 2.0, 0.4, 0.0),
+    "kappa1=+1": _v(0.2, 1.0, 1.0, 1.1, 1.5, 0.45, 0.0),
+    "kappa1=-1": _v(0.4, 3.0, 3.0, 1.1, 2.2, 0.4, 0.0),
+    "kappa2=+1": _v(0.35, 4.0, 4.0, 1.8, 3.0, 0.3, 0.0),
+    "kappa2=-1": _v(0.3, 2.0, 2.0, 0.9, 1.6, 0.5, 0.5),
+    "kappa3=-1": _v(0.3, 3.0, 3.0, 2.0, 2.5, 0.3, 0.0),
+    "paper optimum": _v(0.1, 1.0, 1.0, 1.5, 1.8, 0.45, 0.0),
+}
+
+
+def test_score_reads_the_paper_table_row_by_row():
+    assert REFERENCE_RINGS.keys() == PAPER_LIKE.keys()
+    assert all(score(PAPER_LIKE).values())
+    broken = dict(PAPER_LIKE, **{"kappa3=-1": _v(0.3, 3.0, 3.0, 2.0, 2.5, 0.3, 0.5)})  # peak off-centre
+    assert [k for k, ok in score(broken).items() if not ok] == ["kappa3=-1"]
+    uniform = {k: _v(0.0, 0.0, 0.0, 1.0, 1.0, 0.5, 1.0) for k in PAPER_LIKE}    # all closed, uniform
+    assert not any(score(uniform).values())
+
+
+def test_best_design_is_the_cheapest_of_the_most_reproducing(campaign_config):
+    rows = [{"arm_thickness": a, "radial_clearance": c, "normal_stiffness_per_area": k, "rows_reproduced": n}
+            for a, c, k, n in [(0.006, 3e-5, 2e11, 2), (0.009, 2e-5, 1e12, 2), (0.006, 2e-5, 1e12, 2),
+                               (0.006, 0.0, 7e10, 1)]]
+    assert best_design(rows, campaign_config) is rows[2]

@@ -459,6 +459,10 @@ class KrigingSurrogate:
 
     def __init__(self, ds: xr.Dataset, calibrated: bool = True):
         self.outputs = [str(o) for o in ds["output"].values]
+        missing = [f"{o}_variance_factor" for o in self.outputs if f"{o}_variance_factor" not in ds]
+        if calibrated and missing:
+            raise ValueError(f"kriging.nc lacks {missing} (written before the variance calibration): "
+                             "refit it (snakemake --forcerun kriging)")
         self.amplitude = ds["amplitude"]
         self.units = {o: ds[o].attrs.get("units", "1") for o in self.outputs}
         kappa = ds["kappa"].transpose("geometry", "parameter").values

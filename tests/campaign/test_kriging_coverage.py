@@ -6,12 +6,15 @@
   points, 500 uniform test points per path and 6 paths (3000 points in all), the ±2σ band of the
   calibrated predictor covers the true error within 3 points of the nominal 95.45 % (the plain
   ML band covers 91 % on the same data: the estimated hyperparameters make it overconfident).
+* A kriging.nc written before the calibration is refused, naming the missing variable.
 """
 import numpy as np
 import pytest
 from scipy.stats import qmc
 
 from ringdamper.campaign import kriging as K
+
+from .test_kriging import campaign_dataset
 
 SCALE = 0.8
 
@@ -53,3 +56,10 @@ def test_calibrated_band_covers_gaussian_process_paths_at_the_nominal_rate():
     ml, cal = np.mean(hits_ml), np.mean(hits_cal)
     assert cal == pytest.approx(K.BAND_PROBABILITY, abs=0.03)
     assert ml < K.BAND_PROBABILITY - 0.03
+
+
+def test_a_kriging_file_without_variance_factors_is_refused_by_name():
+    fit = K.fit_campaign(campaign_dataset(20), outputs=("gamma",), settings={"n_starts": 2})
+    with pytest.raises(ValueError, match="gamma_variance_factor"):
+        K.KrigingSurrogate(fit.drop_vars("gamma_variance_factor"))
+    assert K.KrigingSurrogate(fit.drop_vars("gamma_variance_factor"), calibrated=False).outputs == ["gamma"]

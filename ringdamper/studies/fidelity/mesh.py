@@ -1,5 +1,6 @@
 """Mesh dial: frequencies of the target ND's mode families per (refinement factor, element order),
-extrapolated to zero element size (Richardson, h = 1 / factor) per element order.
+extrapolated to zero element size (Richardson, h = 1 / factor) per element order; errors against the
+limit of the highest order.
 
 The mesh levels are modal only (prestressed at operating speed, contact stuck): a 3x quadratic mesh
 already takes GBs and minutes for one ND, so the nonlinear chain is not run on refined meshes; the
@@ -29,21 +30,23 @@ def mesh_level(config: dict, factor: int, order: int, families) -> dict:
 
 def extrapolate(rows: list[dict], families) -> list[dict]:
     """Per element order with three or more factors: the Richardson limit and order of each family
-    from its three finest levels; every row gains ``error_<family>`` against its order's limit
-    (NaN without one). Returns the limits as rows (order, family, limit_hz, p)."""
+    from its three finest levels. Every row gains ``error_<family>`` against the limit of the highest
+    element order (the best estimate; NaN without one). Returns the limits as rows (order, family,
+    limit_hz, p)."""
     limits = []
     for order in sorted({r["order"] for r in rows}):
         levels = sorted((r for r in rows if r["order"] == order), key=lambda r: r["factor"])
         for fam in families:
-            key = f"frequency_{fam}"
             f0, p = np.nan, np.nan
             if len(levels) >= 3:
                 last = levels[-3:]
                 try:
-                    f0, p = richardson([1.0 / r["factor"] for r in last], [r[key] for r in last])
+                    f0, p = richardson([1.0 / r["factor"] for r in last], [r[f"frequency_{fam}"] for r in last])
                 except ValueError:
                     pass
             limits.append({"order": order, "family": fam, "limit_hz": f0, "p": p})
-            for r in levels:
-                r[f"error_{fam}"] = r[key] / f0 - 1.0 if np.isfinite(f0) else np.nan
+    for fam in families:
+        best = [lim["limit_hz"] for lim in limits if lim["family"] == fam and np.isfinite(lim["limit_hz"])]
+        for r in rows:
+            r[f"error_{fam}"] = r[f"frequency_{fam}"] / best[-1] - 1.0 if best else np.nan
     return limits

@@ -45,9 +45,11 @@ def case_rows(config: dict, cases: dict) -> list[dict]:
     return rows
 
 
-def choose(rows: list[dict], tolerance: float) -> dict:
+def choose(rows: list[dict], tolerance: float, current: dict, noise: float = 0.1) -> dict:
     """Per dial: the value of least chain CPU (largest over rings) whose ``error_max`` is below
-    ``tolerance`` on every ring (the reference value when none is)."""
+    ``tolerance`` on every ring (the reference value when none is). The ``current`` value is kept
+    when it is below the tolerance too and the cheaper one saves less than ``noise`` of its CPU
+    (differences within the timing noise of a shared machine do not justify changing results)."""
     out = {}
     for dial in dict.fromkeys(r["dial"] for r in rows):
         by_value: dict = {}
@@ -56,7 +58,11 @@ def choose(rows: list[dict], tolerance: float) -> dict:
             b["cpu"] = max(b["cpu"], r["chain_cpu_s"])
             b["error"] = max(b["error"], 0.0 if r["is_reference"] else r["error_max"])
         ok = [v for v, b in by_value.items() if b["error"] < tolerance]
-        out[dial] = min(ok, key=lambda v: by_value[v]["cpu"]) if ok else list(by_value)[-1]
+        best = min(ok, key=lambda v: by_value[v]["cpu"]) if ok else list(by_value)[-1]
+        keep = current.get(dial)
+        if keep in ok and by_value[best]["cpu"] > (1.0 - noise) * by_value[keep]["cpu"]:
+            best = keep
+        out[dial] = best
     return out
 
 
@@ -90,8 +96,8 @@ def campaign_summary(config: dict, rows: list[dict], n_geometries: int, n_cores:
     """Chosen settings and the chain CPU and campaign time at the current defaults, the chosen
     settings and the converged reference (finest value of every dial)."""
     fid = config["fidelity"]
-    chosen = choose(rows, fid["tolerance"])
     current = {d: default_value(config, d) for d in dials(fid)}
+    chosen = choose(rows, fid["tolerance"], current)
     reference = {d: spec["values"][-1] for d, spec in dials(fid).items()}
     out = {"tolerance": fid["tolerance"], "chosen": chosen, "current": current, "reference": reference,
            "chain_cpu_s": {}, "campaign_h": {}}

@@ -118,3 +118,30 @@ def test_step_settings_agree_on_folding_chains(seed):
     assert np.all(default.status == Status.CONVERGED)
     for steps in (StepControl(0.5, 1e-4, 2.0), StepControl(0.02, 1e-4, 0.02)):
         assert branch_difference(epmc(st, c, alpha, steps=steps, **OPTIONS), default) == ""
+
+
+def test_arclength_refuses_a_parallel_branch_at_every_step_size():
+    """``r(z, s) = z − 10·[s > 0.3]``: two parallel branches (z = 0, z = 10) with nothing joining
+    them. A corrector past s = 0.3 lands on the other one, with both end tangents parallel to the
+    chord's direction of travel only in s: the chord–tangent test rejects it at every step down to
+    the minimum, and the run stops there with a status instead of switching."""
+    from ringdamper.nonlinear.continuation import arclength
+
+    def fun(x, jac):
+        r = np.array([x[0] - 10.0 * (x[1] > 0.3)])
+        return r, np.array([[1.0, 0.0]]) if jac else None, None, 1, None
+
+    run = arclength(fun, np.zeros(2), np.array([0.0, 1.0]), np.ones(2),
+                    StepControl(0.25, 1e-4, 0.5), 1e-12, 5, stop=lambda x: x[1] > 1.0,
+                    max_points=100)
+    assert run.status == Status.NO_CONVERGENCE and "jumped" in run.reason
+    assert all(p.z[0] == 0.0 for p in run.points)
+    assert 0.3 - 1e-3 < run.points[-1].z[1] <= 0.3
+
+
+@pytest.mark.parametrize("kw, field", [(dict(initial=1e-5, minimum=1e-4, maximum=0.5), "minimum"),
+                                       (dict(initial=0.2, minimum=1e-4, maximum=1e-5), "maximum"),
+                                       (dict(initial=0.2, minimum=1e-4, maximum=0.5, turn=1.0), "turn")])
+def test_step_control_refuses_bad_settings(kw, field):
+    with pytest.raises(ValueError, match=field):
+        StepControl(**kw)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
+from matplotlib.ticker import NullFormatter, ScalarFormatter
 
 from .modal import FAMILY_STYLE
 
@@ -20,8 +21,9 @@ def _save(fig, path):
 
 def plot_dials(dials: pd.DataFrame, chosen: dict, tolerance: float, path) -> None:
     """One panel per dial: chain CPU per geometry (x, log) against the largest relative error of the
-    user quantities (y, log), per ring; the reference value is left out (zero error), the current
-    default is ringed, the chosen setting starred; the tolerance is the dashed line."""
+    user quantities (y, log), per ring; the reference value is left out (zero error, cost in the
+    title), the current default is ringed, the chosen setting starred (no star: the reference is
+    chosen); the tolerance is the dashed line."""
     names = list(dict.fromkeys(dials.dial))
     ncol = 3
     nrow = int(np.ceil(len(names) / ncol))
@@ -44,6 +46,12 @@ def plot_dials(dials: pd.DataFrame, chosen: dict, tolerance: float, path) -> Non
         ax.axhline(tolerance, color="k", ls="--", lw=0.8)
         ax.set_xscale("log")
         ax.set_yscale("log")
+        lo, hi = ax.get_xlim()
+        if hi / lo < 4.0:                          # a narrow cost range: show it on a readable span
+            mid = np.sqrt(lo * hi)
+            ax.set_xlim(mid / 2.0, mid * 2.0)
+        ax.xaxis.set_major_formatter(ScalarFormatter())
+        ax.xaxis.set_minor_formatter(NullFormatter())
         ref = d[d.is_reference]
         cost = ", ".join(f"{c:.0f} s" for c in ref.chain_cpu_s)
         ax.set_title(f"{d.key.iloc[0]}: reference {ref.value.iloc[0]:g} ({cost})", fontsize=9)

@@ -8,6 +8,7 @@ import yaml
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc
 from ringdamper.studies.fidelity.quantities import peak, relative_errors, richardson, user_quantities
+from ringdamper.studies.fidelity.summary import choose
 from ringdamper.studies.fidelity.surrogate import backbone_dataset, lhs_design
 from tests.nonlinear.systems import one_dof
 from tests.snakemake_run import REPO, run_snakemake
@@ -106,3 +107,16 @@ def test_fidelity_rules_run_on_the_coarse_configuration(tmp_path):
     f1d = limits.set_index("family").limit_hz["1D"]
     assert mesh.frequency_1D.is_monotonic_decreasing and f1d < mesh.frequency_1D.min()   # from above
     assert abs(mesh.error_1D.iloc[-1]) < abs(mesh.error_1D.iloc[0])
+
+
+def test_choice_is_the_cheapest_accurate_setting_beyond_timing_noise():
+    def row(value, cpu, err, ref=False):
+        return {"dial": "d", "value": value, "chain_cpu_s": cpu, "error_max": err, "is_reference": ref}
+
+    rows = [row(1, 5.0, 0.05), row(2, 10.0, 0.004), row(3, 10.5, 0.0001), row(5, 40.0, 0.0, True)]
+    assert choose(rows, 0.01, {"d": 5}) == {"d": 3}          # 2 and 3 cost the same: the accurate one
+    assert choose(rows, 0.01, {"d": 3}) == {"d": 3}
+    rows[2]["chain_cpu_s"] = 9.5                              # 3 is now cheapest, and current
+    rows[1]["chain_cpu_s"] = 9.0
+    assert choose(rows, 0.01, {"d": 3}) == {"d": 3}           # 2 saves < 10 %: keep the current one
+    assert choose(rows, 1e-6, {"d": 3}) == {"d": 5}           # nothing accurate enough: the reference

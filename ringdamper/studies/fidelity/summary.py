@@ -46,10 +46,11 @@ def case_rows(config: dict, cases: dict) -> list[dict]:
 
 
 def choose(rows: list[dict], tolerance: float, current: dict, noise: float = 0.1) -> dict:
-    """Per dial: the value of least chain CPU (largest over rings) whose ``error_max`` is below
-    ``tolerance`` on every ring (the reference value when none is). The ``current`` value is kept
-    when it is below the tolerance too and the cheaper one saves less than ``noise`` of its CPU
-    (differences within the timing noise of a shared machine do not justify changing results)."""
+    """Per dial: among the values whose ``error_max`` is below ``tolerance`` on every ring, those whose
+    chain CPU (largest over rings) is within ``noise`` of the cheapest, and of these the most accurate
+    (the reference value when none is below the tolerance). The ``current`` value is kept when it is
+    below the tolerance too and the choice saves less than ``noise`` of its CPU: differences within
+    the timing noise of a shared machine do not justify changing results."""
     out = {}
     for dial in dict.fromkeys(r["dial"] for r in rows):
         by_value: dict = {}
@@ -58,7 +59,12 @@ def choose(rows: list[dict], tolerance: float, current: dict, noise: float = 0.1
             b["cpu"] = max(b["cpu"], r["chain_cpu_s"])
             b["error"] = max(b["error"], 0.0 if r["is_reference"] else r["error_max"])
         ok = [v for v, b in by_value.items() if b["error"] < tolerance]
-        best = min(ok, key=lambda v: by_value[v]["cpu"]) if ok else list(by_value)[-1]
+        if not ok:
+            out[dial] = list(by_value)[-1]
+            continue
+        cheapest = min(by_value[v]["cpu"] for v in ok)
+        best = min((v for v in ok if by_value[v]["cpu"] <= (1.0 + noise) * cheapest),
+                   key=lambda v: by_value[v]["error"])
         keep = current.get(dial)
         if keep in ok and by_value[best]["cpu"] > (1.0 - noise) * by_value[keep]["cpu"]:
             best = keep

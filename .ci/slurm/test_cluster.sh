@@ -40,7 +40,7 @@ if pgrep -x slurmctld >/dev/null || pgrep -x slurmd >/dev/null; then
     echo "a slurmctld or slurmd is already running (PIDs $(pgrep -x slurmctld) $(pgrep -x slurmd)): stop it first" >&2
     exit 1
 fi
-if [ -e "$CONF" ] && ! grep -qx "$MARK" "$CONF"; then
+if [ -e "$CONF" ] && ! head -n 1 "$CONF" | grep -qF "$MARK"; then
     echo "$CONF exists and was not written by this script: not overwriting it" >&2
     exit 1
 fi

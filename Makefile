@@ -49,6 +49,7 @@ fidelity: $(STAMP)
 	cp results/fidelity/fidelity_*.png docs/figures/
 	cp results/fidelity/dials.csv results/fidelity/mesh.csv results/fidelity/mesh_limits.csv \
 	   results/fidelity/surrogate.csv results/fidelity/forced.csv results/fidelity/summary.yaml docs/fidelity/
+	for f in results/fidelity/limits/*.png; do cp $$f docs/figures/method_limits_$$(basename $$f); done
 
 report: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --report results/report.html

@@ -13,6 +13,7 @@ rule fidelity:
         f"{FIDELITY}/surrogate.csv",
         f"{FIDELITY}/forced.csv",
         f"{FIDELITY}/summary.yaml",
+        rules.method_limits.input,
 
 
 rule fidelity_case:

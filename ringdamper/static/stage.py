@@ -172,6 +172,12 @@ def static_fields(model: SectorModel, result: StaticContactResult | None = None,
     return {"displacement": u, "N0": n0, "gap": gap}
 
 
+def injected_fault(config: dict, kappa) -> bool:
+    """Whether ``kappa`` is listed in the test-only ``fault_injection.static`` of the configuration."""
+    listed = config.get("fault_injection", {}).get("static", [])
+    return any(np.array_equal(np.asarray(k, dtype=float), np.asarray(kappa, dtype=float)) for k in listed)
+
+
 def run_static(config: dict, kappa) -> tuple[xr.Dataset, SectorModel | None, dict | None]:
     """The static stage of geometry ``kappa`` at the operating speed: (static.nc dataset, model,
     static.vtu point fields). It never raises: a failure (meshing, assembly or solve) gives
@@ -180,6 +186,8 @@ def run_static(config: dict, kappa) -> tuple[xr.Dataset, SectorModel | None, dic
     model = None
     try:
         model = build_model(build_sector(config, kappa), config)
+        if injected_fault(config, kappa):
+            raise RuntimeError("fault injected by the configuration (fault_injection.static)")
         result, prob = solve_static(model, config)
     except Exception as err:  # a failed geometry must not stop the campaign
         log.exception("static stage failed for kappa=%s", list(kappa))

@@ -43,6 +43,13 @@ import numpy as np
 from ringdamper.nonlinear.newton import Factorization, NewtonResult, newton
 
 
+# Weight, in the arc length of :func:`natural_then_arclength`, of the unknowns outside ``jump_mask``
+# (relative to the others): the mean values of a body that moves freely where its last holding
+# contact lets go. At full weight its drift dominates the tangent there, the steps walk along the
+# drift and the geometry tests, which look at the other unknowns, see noise.
+FREE_WEIGHT = 1e-2
+
+
 class Status(IntEnum):
     """Per-point status (0 = converged), stored with every result."""
 
@@ -378,7 +385,8 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
     ``steps.minimum``. Points keep statuses and reasons as in :func:`natural`; ``branch`` holds
     every accepted point of both parts (``s`` then not monotone). Arc length is measured on
     ``[z/(√n·scale(z)), s]``: the RMS relative change of the unknowns and the change of ``s``
-    weigh alike. ``max_points`` bounds the arc-length points (default ``400·max(1, 0.5 / steps.maximum)``, so
+    weigh alike, except the unknowns outside ``jump_mask``, which weigh ``FREE_WEIGHT``.
+    ``max_points`` bounds the arc-length points (default ``400·max(1, 0.5 / steps.maximum)``, so
     that a smaller maximum step does not run out of points)."""
     grid = np.asarray(grid, float)
     out = natural(fun, dfun_ds, z0, grid, scale, steps, tol, max_iter, accept=accept,
@@ -402,8 +410,12 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
         return r, Jx, trivial, n_core, payload
 
     def rescale(x, _previous=None):
-        """Arc-length scaling at ``x`` (the previous scaling is not needed)."""
-        return np.r_[root_n * scale(x[:-1]), 1.0]
+        """Arc-length scaling at ``x`` (the previous scaling is not needed); unknowns outside
+        ``jump_mask`` weigh ``FREE_WEIGHT``."""
+        sc = np.r_[root_n * scale(x[:-1]), 1.0]
+        if mask is not None:
+            sc[~mask] /= FREE_WEIGHT
+        return sc
 
     def bisect(xa, xb, sc):
         """Branch point between ``xa`` and ``xb``: corrector on the hyperplane normal to their

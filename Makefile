@@ -41,6 +41,7 @@ studies: $(STAMP)
 	cp results/studies/contact_calibration/*.png docs/figures/
 	cp results/studies/contact_state/*.csv docs/calibration/
 	cp results/studies/contact_state/*.png docs/figures/
+	cp results/studies/last_point/last_point_separation.png docs/figures/
 
 # the fidelity study (config.yaml `fidelity:`; not part of `campaign`), then its committed figures and tables
 fidelity: $(STAMP)

@@ -53,3 +53,4 @@ rule all:
         f"{RESULTS}/surrogate/optimum_check.csv",
         f"{RESULTS}/tables/paper_comparison.csv",
         f"{RESULTS}/tables/validation_metrics.html",
+        rules.study_charts.output,

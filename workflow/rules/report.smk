@@ -79,3 +79,28 @@ rule report_tables:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/report_tables.py"
+
+
+# The charts of the fidelity study, the method-limit studies and the last-point analysis are measured
+# by `make fidelity` and `make studies` (hours of CPU, not part of the campaign) and committed under
+# docs/figures/; the report shows the committed charts beside the campaign's own figures.
+STUDY_CHARTS = ("fidelity_dials", "fidelity_mesh", "fidelity_pareto", "method_limits_eebm_validity",
+                "method_limits_harmonics", "method_limits_kriging_coverage", "method_limits_stability",
+                "last_point_separation")
+
+
+rule study_charts:
+    input:
+        **{name: f"docs/figures/{name}.png" for name in STUDY_CHARTS},
+    output:
+        **{name: report(f"{RESULTS}/figures/studies/{name}.png", category="Fidelity and method limits",
+                        caption=f"../report/{name}.rst") for name in STUDY_CHARTS},
+    localrule: True
+    log:
+        f"{RESULTS}/logs/study_charts.log",
+    params:
+        folder=lambda wildcards, output: Path(output[0]).parent,
+    conda:
+        "../../envs/ringdamper.yaml"
+    shell:
+        "cp -v {input:q} {params.folder:q} > {log:q} 2>&1"

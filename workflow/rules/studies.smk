@@ -14,6 +14,7 @@ rule studies:
         f"{STUDIES}/contact_calibration/tables.md",
         f"{STUDIES}/contact_state/contact_state_designs.csv",
         f"{STUDIES}/contact_state/contact_state_backbone.csv",
+        f"{STUDIES}/last_point/last_point_separation.png",
 
 
 rule hub_calibration:
@@ -143,3 +144,26 @@ rule contact_state_backbone:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_contact_state_backbone.py"
+
+
+rule last_point:
+    input:
+        reduced=f"{RESULTS}/geometry/{DEFAULT_GID}/reduced.nc",
+        static=f"{RESULTS}/geometry/{DEFAULT_GID}/static.nc",
+        resonance=f"{RESULTS}/modal/resonance.yaml",
+    output:
+        campaign=f"{STUDIES}/last_point/campaign.nc",
+        fine=f"{STUDIES}/last_point/fine.nc",
+        figure=report(f"{STUDIES}/last_point/last_point_separation.png", category="Studies"),
+    threads: 1
+    resources:
+        mem_mb=scaled(1500),
+        runtime=15,
+    log:
+        f"{RESULTS}/logs/studies/last_point.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/studies/last_point.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/study_last_point.py"

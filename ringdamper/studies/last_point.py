@@ -1,0 +1,137 @@
+"""Why the campaign's backbones rise at the top of the amplitude grid (docs/nonlinear_core.md, "The
+last grid amplitude").
+
+On the default ring γ and ζ jump between the last two grid amplitudes (α = 2.46e-4 → 3.0e-4 kg^½ m).
+The study tells a physical change of the contact state from a numerical artefact: it traces the
+default ring's backbone twice, at the campaign's harmonics on the campaign grid and at more
+harmonics on a fine grid over the top of the range, and records at every amplitude how far the
+ring–blisk pairs are from opening,
+
+    n_min(α) = min over preloaded pairs p and time t of  N_p(t) / N0_p,
+    N_p(t) = N0_p + kn_p d_n,p(t)                                  (unclipped normal force),
+
+which is 1 in the stuck linear regime and crosses 0 where the first pair lifts off for part of the
+period, with the number of pairs that do (``open_pairs``). A rise that starts where n_min crosses
+0, and that a finer grid and more harmonics follow smoothly, is the onset of separation; a rise
+with n_min well above 0, or one the fine grid does not reproduce, would be a branch jump.
+"""
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from ringdamper.io import variable
+from ringdamper.nonlinear.eebm import eebm
+from ringdamper.nonlinear.epmc import Backbone, epmc
+from ringdamper.nonlinear.fourier import Fourier
+from ringdamper.nonlinear.friction import FrictionContacts
+from ringdamper.nonlinear.stage import (amplitude_grid, contacts_from_static, structure_from_reduced,
+                                        target_stuck_frequency)
+
+
+def normal_force_ratio(backbone: Backbone, contacts: FrictionContacts, nt: int = 256) -> np.ndarray:
+    """``min_t N_p(t)/N0_p`` per grid amplitude and preloaded pair, ``(nα, n_preloaded)``, from the
+    normal contact displacements of the backbone (slot layout of :mod:`ringdamper.nonlinear.fourier`,
+    pair-major ``(n, t1, t2)`` coordinates), synthesised on ``nt`` samples per period."""
+    fourier = Fourier(backbone.H, nt)
+    preloaded = np.flatnonzero(contacts.N0 > 0)
+    d_normal = backbone.d[:, :, 3 * preloaded]                         # (nα, C, n_preloaded)
+    samples = np.einsum("tc,acp->atp", fourier.E, d_normal)            # (nα, nt, n_preloaded)
+    n0, kn = contacts.N0[preloaded], contacts.kn[preloaded]
+    return np.min(1.0 + kn * samples / n0, axis=1)
+
+
+def fine_grid(campaign_alpha: np.ndarray, points_below: int, n_points: int) -> np.ndarray:
+    """``n_points`` log-spaced amplitudes from the campaign grid value ``points_below`` points below
+    its top to its top."""
+    return np.geomspace(campaign_alpha[-1 - points_below], campaign_alpha[-1], n_points)
+
+
+def trace(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: float, alpha: np.ndarray,
+          n_harmonics: int) -> xr.Dataset:
+    """Backbone of the target mode at ``n_harmonics`` on ``alpha``: status, frequency, ζ, γ, |q_res,z|,
+    n_min and the number of open pairs per amplitude."""
+    cfg = config["dnnm"]
+    structure = structure_from_reduced(reduced, n_harmonics)
+    contacts = contacts_from_static(static, config["contact"], cfg["friction_law"])
+    backbone = epmc(structure, contacts, alpha, H=n_harmonics,
+                    omega_target=target_stuck_frequency(structure, contacts, target_hz),
+                    tol=cfg.get("continuation_tolerance", 1e-8))
+    res = eebm(backbone, zeta_s=cfg["structural_damping_ratio"])
+    ratio = normal_force_ratio(backbone, contacts)
+    usable = np.isin(res.status, (0, 3))
+    open_pairs = np.where(usable, np.sum(ratio <= 0.0, axis=1), -1)
+    coords = {"amplitude": variable("amplitude", alpha, "kg0.5 m", "modal amplitude alpha")}
+    data = {
+        "status": variable("amplitude", np.asarray(res.status, np.int8), "1", "dNNM point status"),
+        "frequency": variable("amplitude", res.frequency, "Hz", "resonant frequency"),
+        "zeta": variable("amplitude", res.zeta, "1", "modal damping ratio of the dNNM"),
+        "gamma": variable("amplitude", res.gamma, "N", "forcing level (E-EBM)"),
+        "q_res_z": variable("amplitude", res.q_res_peak, "m", "peak blade-tip Z displacement"),
+        "normal_force_ratio_min": variable(
+            "amplitude", np.where(usable, ratio.min(axis=1), np.nan), "1",
+            "smallest unclipped normal force over the period relative to its preload, over the preloaded pairs"),
+        "open_pairs": variable("amplitude", open_pairs.astype(np.int16), "1",
+                               "preloaded pairs that lift off during part of the period (-1: unusable point)"),
+    }
+    return xr.Dataset(data, coords=coords, attrs={"n_harmonics": n_harmonics})
+
+
+def run_study(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: float) -> dict[str, xr.Dataset]:
+    """The two traces of the study (``studies.last_point`` of the configuration): ``campaign`` at
+    the campaign's H on its grid, ``fine`` at ``n_harmonics`` on :func:`fine_grid`."""
+    study = config["studies"]["last_point"]
+    alpha = amplitude_grid(config["dnnm"])
+    fine = fine_grid(alpha, study["points_below"], study["n_points"])
+    return {"campaign": trace(reduced, static, config, target_hz, alpha, config["dnnm"]["n_harmonics"]),
+            "fine": trace(reduced, static, config, target_hz, fine, study["n_harmonics"])}
+
+
+def onset_of_separation(trace_ds: xr.Dataset) -> float:
+    """Amplitude where ``normal_force_ratio_min`` first crosses 0 (linear in log α between the
+    bracketing points; NaN if it never does)."""
+    a = np.log(trace_ds.amplitude.values)
+    n = trace_ds.normal_force_ratio_min.values
+    for k in range(len(a) - 1):
+        if np.isfinite(n[k]) and np.isfinite(n[k + 1]) and n[k] > 0 >= n[k + 1]:
+            return float(np.exp(a[k] + (a[k + 1] - a[k]) * n[k] / (n[k] - n[k + 1])))
+    return float("nan")
+
+
+def plot(traces: dict[str, xr.Dataset], path) -> None:
+    """Frequency, ζ, γ and n_min against α for both traces, the onset of separation marked."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(2, 2, figsize=(9, 6.5), dpi=90, sharex=True)
+    styles = {"campaign": dict(marker="o", lw=1.2, color="tab:blue"),
+              "fine": dict(marker=".", lw=1.0, color="tab:red")}
+    onset = onset_of_separation(traces["fine"])
+    lo = traces["fine"].amplitude.values[0] / 1.5
+    for name, ds in traces.items():
+        ok = np.isin(ds.status.values, (0, 3)) & (ds.amplitude.values >= lo)
+        a = ds.amplitude.values[ok]
+        label = f"H = {ds.attrs['n_harmonics']}, {name} grid"
+        axes[0, 0].plot(a, ds.frequency.values[ok], label=label, **styles[name])
+        axes[0, 1].plot(a, 100 * ds.zeta.values[ok], **styles[name])
+        axes[1, 0].plot(a, ds.gamma.values[ok], **styles[name])
+        axes[1, 1].plot(a, ds.normal_force_ratio_min.values[ok], **styles[name])
+    for ax, ylabel in zip(axes.ravel(), ("frequency (Hz)", r"$\zeta$ (%)", r"$\gamma$ (N)",
+                                        r"min$_{p,t}$ $N/N_0$")):
+        ax.set_ylabel(ylabel)
+        ax.set_xscale("log")
+        ax.grid(alpha=0.3, which="both")
+        if np.isfinite(onset):
+            ax.axvline(onset, color="k", ls=":", lw=1)
+    axes[1, 1].axhline(0.0, color="k", lw=0.8)
+    axes[1, 0].set_yscale("log")
+    for ax in axes[1]:
+        ax.set_xlabel(r"modal amplitude $\alpha$ (kg$^{1/2}$ m)")
+    axes[0, 0].legend(fontsize=8)
+    fig.suptitle("Default ring, top of the amplitude grid: dotted line = first pair lifts off"
+                 + (f" (α = {onset:.3g})" if np.isfinite(onset) else ""), fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)

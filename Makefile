@@ -22,7 +22,7 @@ campaign: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --report results/report.html
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n 2 --dist loadgroup --durations=15
 
 # the test campaign on a real single-node SLURM of this machine (root: installs and starts it), its
 # arrays against a local run of the same configuration; the daemons are stopped on exit

@@ -24,3 +24,19 @@ def config(campaign_config):
 def small_config():
     """The coarse configuration used by the Snakemake smoke test and CI."""
     return load_config(TESTS / "config_small.yaml")
+
+
+SNAKEMAKE_GROUP = "snakemake"
+
+
+def pytest_collection_modifyitems(items):
+    """Under ``pytest -n 2 --dist loadgroup`` (``make test``), every test that runs Snakemake goes to
+    one worker, one after another: they share the session's small campaign and the repository's
+    ``.snakemake`` metadata (locks, incomplete markers), and each already uses both cores. The other
+    tests spread over the workers around them."""
+    for item in items:
+        module = getattr(item, "module", None)
+        runs_snakemake = module is not None and any(
+            hasattr(module, name) for name in ("run_snakemake", "snakemake_command"))
+        if runs_snakemake or "small_campaign" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.xdist_group(SNAKEMAKE_GROUP))

@@ -47,7 +47,7 @@ from ringdamper.nonlinear.newton import Factorization, NewtonResult, newton
 # (relative to the others): the mean values of a body that moves freely where its last holding
 # contact lets go. At full weight its drift dominates the tangent there, the steps walk along the
 # drift and the geometry tests, which look at the other unknowns, see noise.
-FREE_WEIGHT = 1e-2
+FREE_WEIGHT = 0.3
 
 
 class Status(IntEnum):

@@ -135,14 +135,14 @@ def test_jump_test_can_leave_out_unknowns_that_move_freely():
     assert masked.points[-1].z == pytest.approx([1.0, 10.0])
 
 
-def test_freely_moving_unknowns_do_not_set_the_arc_length():
+def test_freely_moving_unknowns_do_not_set_the_arc_length(monkeypatch):
     """``r = [y³ − y − s, m − 100·y]``: an S-fold in s (at y = ±1/√3) that natural continuation
     cannot pass, and an unknown ``m`` (standing for the mean position of a ring that lets go) that
-    moves 100 times faster than ``y``. Left out of the jump test by ``jump_mask``, it also weighs
-    ``FREE_WEIGHT`` in the arc length: the fold is followed in a few dozen points and every grid
-    value lies on the branch beyond it. At full weight ``m``'s travel (about 400 scaled units at
-    steps of at most 0.5) sets the steps: about 390 points for the same branch."""
-    from ringdamper.nonlinear.continuation import StepControl, natural_then_arclength
+    moves 100 times faster than ``y``. Left out of the jump test by ``jump_mask``, it weighs
+    ``FREE_WEIGHT`` in the arc length: the fold is followed to the same grid values on the branch
+    beyond it in well under half the points that full weight takes (where ``m``'s travel, about
+    400 scaled units at steps of at most 0.5, sets the steps)."""
+    import ringdamper.nonlinear.continuation as continuation
 
     def fun(z, s, jac):
         y, m = z
@@ -153,12 +153,21 @@ def test_freely_moving_unknowns_do_not_set_the_arc_length():
         return np.array([-1.0, 0.0])
 
     grid = np.linspace(-6.0, 6.0, 7)
-    y0 = -2.0
-    run = natural_then_arclength(fun, dfun_ds, np.array([y0, 100 * y0]), grid, lambda z: np.ones(2),
-                                 StepControl(0.2, 1e-4, 0.5), 1e-12, 20,
-                                 jump_mask=np.array([True, False]), max_points=400)
-    assert np.all(run.status == Status.CONVERGED)
-    ys = np.array([p.z[0] for p in run.points])
-    assert ys ** 3 - ys == pytest.approx(grid, abs=1e-9)
-    assert np.all(ys[grid > 0.4] > 1 / np.sqrt(3))                  # past the fold, on the upper branch
-    assert len(run.branch) < 100
+
+    def trace():
+        y0 = -2.0
+        return continuation.natural_then_arclength(
+            fun, dfun_ds, np.array([y0, 100 * y0]), grid, lambda z: np.ones(2),
+            continuation.StepControl(0.2, 1e-4, 0.5), 1e-12, 20, jump_mask=np.array([True, False]),
+            max_points=400)
+
+    assert continuation.FREE_WEIGHT < 1.0
+    weighted = trace()
+    monkeypatch.setattr(continuation, "FREE_WEIGHT", 1.0)
+    full = trace()
+    for run in (weighted, full):
+        assert np.all(run.status == Status.CONVERGED)
+        ys = np.array([p.z[0] for p in run.points])
+        assert ys ** 3 - ys == pytest.approx(grid, abs=1e-9)
+        assert np.all(ys[grid > 0.4] > 1 / np.sqrt(3))             # past the fold, on the upper branch
+    assert len(weighted.branch) < 0.5 * len(full.branch)

@@ -19,8 +19,9 @@ point of ``d`` inside a reversal step (``O(Δt²)``) make the scheme second orde
 Shooting: unknowns ``u = [q0, q̇0, w0, ω, ξ]``; equations: periodicity ``x(T) − x(0) = 0`` of the
 state ``x = [q, q̇, w]``, the EPMC amplitude condition ``½ log(Q_1ᵀ M Q_1) − log α = 0`` on the
 fundamental ``Q_1 = (2/T) ∫ q e^{−iωt} dt`` (rectangle rule on the step samples, exact to the
-order of the scheme for a periodic signal) and the phase condition ``gᵀ Im Q_1 = 0`` (the sine
-coefficient of the coordinate ``gᵀ q`` vanishes, as in :class:`~ringdamper.nonlinear.epmc.EPMCProblem`).
+order of the scheme for a periodic signal) and the phase condition ``gᵀ b_1 = 0`` (the sine
+coefficient of the coordinate ``gᵀ q`` vanishes, as in
+:class:`~ringdamper.nonlinear.epmc.EPMCProblem`).
 Newton with the exact Jacobian of the discrete map (forward tangent propagation through the RK4
 stages and the clips; ``Δt`` depends on ω). A pair that sticks through the whole period leaves its
 slider undetermined (any position inside its band is periodic); the Newton step is the
@@ -60,7 +61,7 @@ class JenkinsTimeModel:
         self.Bn, self.Bt = B[:, 0], B[:, 1:]                  # (np, n), (np, 2, n)
         self.c = contacts
         self.MinvK = np.linalg.solve(self.M, self.K)
-        self.MinvBT = np.linalg.solve(self.M, B.reshape(-1, self.n).T).reshape(self.n, self.npairs, 3)
+        self.MinvBT = np.linalg.solve(self.M, B.reshape(-1, self.n).T).reshape(self.n, -1, 3)
         self.static = contacts.static_force()[:, 0]
         self.nx = 2 * self.n + 2 * self.npairs                # state [q, q̇, w]
 

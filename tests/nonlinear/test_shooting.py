@@ -6,7 +6,8 @@ against it on a chain whose EPMC frequency rises with amplitude.
   relative, 3e-9 at 256 steps: tolerance 1e-8) and the ξ that cancels RK4's amplitude decay,
   |R(iz)| = 1 − z⁶/144 per step (z = ωΔt), i.e. ξ/ω = z⁵/72 (1.2e-10; 1 % tolerance).
 * Jacobian: the tangent of the discrete period map against central differences (1e-6 of its
-  largest entry; the map is piecewise linear in the state, smooth in ω, ξ).
+  largest entry; the map is piecewise linear in the state, smooth in ω, ξ; measured ≤ 5e-9) on a
+  slipping chain and on a 3-D case whose normal load varies and vanishes (``multi_dof``).
 * 1-DoF Jenkins oscillator in gross slip (a = 3 a_slip): the H = 1 describing function is not the
   periodic orbit (its ζ is 0.4 % off the shooting's), the HBM at H = 15 is (ζ within 3e-4
   relative: measured 1.2e-4, the H = 15 truncation; integrator error ≤ 5e-6 at 1024 steps).
@@ -29,7 +30,8 @@ from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.shooting import (JenkinsTimeModel, hbm_state, march, phase_row,
                                            return_error, shoot, shooting_residual)
 
-from .systems import cyclic_structure, describing_function, jenkins_chain, one_dof
+from .systems import (cyclic_structure, describing_function, jenkins_chain, multi_dof,
+                      one_dof)
 from .test_continuation_family import chain_grid
 
 RISING_SEED = 149
@@ -55,11 +57,15 @@ def test_linear_stuck_chain_is_periodic_at_the_stuck_frequency():
     assert np.max(np.abs(res.x0[2 * model.n:])) <= 1e-12 * alpha   # stuck sliders stay put
 
 
-def test_tangent_matches_finite_differences():
-    st, c = jenkins_chain(43)
+@pytest.mark.parametrize("system, amplitude", [
+    (lambda: jenkins_chain(43), lambda st, c, phi: 3.0 * linear_limit(st, c, phi)),  # both slip
+    (lambda: multi_dof(H=1), lambda st, c, phi: 1e-2)],      # pair 0: |d_n| ≈ 2e-4 > N0/kn
+    ids=["chain43", "multi_dof"])
+def test_tangent_matches_finite_differences(system, amplitude):
+    st, c = system()
     model = JenkinsTimeModel(st, c)
     w0, phi = _stuck(st, c)
-    alpha = 3.0 * linear_limit(st, c, phi)                     # both elements slip
+    alpha = amplitude(st, c, phi)
     rng = np.random.default_rng(0)
     u = np.r_[alpha * phi, 0.3 * alpha * w0 * rng.standard_normal(model.n),
               0.01 * alpha * rng.standard_normal(model.nx - 2 * model.n), w0, 0.1 * w0]

@@ -12,7 +12,11 @@ EPMC"); run from the repository root:
 3. the return errors of seed 179's backbones at H = 3 (a branch no other H finds) and at H = 15
    -> ``return_179.csv``;
 4. the linear viscous analogue of seed 149 (its element replaced by a damper c, 0 … 1000)
-   -> ``viscous_149.csv``.
+   -> ``viscous_149.csv``;
+5. Δt convergence of the shooting at two points (seed 43 at the top of the grid, seed 149 at its
+   first strongly slipping amplitude) -> ``steps.csv``;
+6. the folding chain of the family test (``issue_chain``, ζ up to 0.41): HBM at H = 1 and 15 and
+   shooting from H = 15 at every amplitude -> ``issue_chain.csv``.
 """
 import argparse
 import logging
@@ -23,10 +27,13 @@ import numpy as np
 import pandas as pd
 
 from ringdamper.nonlinear.epmc import epmc
+from ringdamper.nonlinear.structure import Structure
 from ringdamper.studies.epmc_time_domain import (compare, damper_poles, frequency_rise, plot,
-                                                 return_check, stuck_frequency)
+                                                 return_check, step_convergence,
+                                                 stuck_frequency)
 from tests.nonlinear.systems import jenkins_chain
-from tests.nonlinear.test_continuation_family import OPTIONS, SEEDS, chain_grid
+from tests.nonlinear.test_continuation_family import (ISSUE_GRID, OPTIONS, SEEDS, chain_grid,
+                                                     issue_chain)
 
 SIMPLEST = 149
 SPURIOUS = 179
@@ -73,6 +80,22 @@ def main():
                                          float_format="%.6g")
     damper_poles(jenkins_chain(SIMPLEST)[0], 0, np.r_[0.0, np.geomspace(0.1, 1e3, 9)]).to_csv(
         out / f"viscous_{SIMPLEST}.csv", index=False, float_format="%.6g")
+    steps = []
+    for seed, i in ((43, 15), (SIMPLEST, 6)):
+        st, c = jenkins_chain(seed, H=15)
+        bb = epmc(st, c, dense_grid(st, c), H=15, nt=1024, tol=1e-10)
+        steps.append(step_convergence(st, c, bb, i).assign(seed=seed))
+    pd.concat(steps).to_csv(out / "steps.csv", index=False, float_format="%.10g")
+    st, c = issue_chain()
+    hd = st.harmonics[1]
+
+    def issue_at(H):
+        return Structure.real(hd.M, hd.K, hd.B, hd.response, hd.force, H=H)
+
+    compare(issue_at, c, ISSUE_GRID, harmonics=(1, 15), shoot_every=1).merge(
+        return_check(issue_at, c, ISSUE_GRID, 1).rename(columns={"return_hbm": "return_h1"})
+        [["H", "alpha", "return_h1"]], on=["H", "alpha"], how="left").to_csv(
+        out / "issue_chain.csv", index=False, float_format="%.8g")
 
 
 if __name__ == "__main__":

@@ -14,10 +14,10 @@ Jenkins force while ``d`` moves monotonically within the step); after the step t
 updated, ``w_{k+1} = clip(w_k, d_{k+1} − r_{k+1}, d_{k+1} + r_{k+1})``. RK4 is fourth order between
 stick/slip events; the kink of the force at a stick→slip event and the slider missing the turning
 point of ``d`` inside a reversal step (``O(Δt²)``) make the scheme second order globally
-(measured in ``docs/nonlinear_core.md``, "Time-domain check of the EPMC").
+(measured in ``docs/nonlinear_core.md`` §4.4).
 
 Shooting: unknowns ``u = [q0, q̇0, w0, ω, ξ]``; equations: periodicity ``x(T) − x(0) = 0`` of the
-state ``x = [q, q̇, w]``, the EPMC amplitude condition ``½ log(Q_1ᵀ M Q_1) − log α = 0`` on the
+state ``x = [q, q̇, w]``, the EPMC amplitude condition ``½ log(Q_1ᴴ M Q_1) − log α = 0`` on the
 fundamental ``Q_1 = (2/T) ∫ q e^{−iωt} dt`` (rectangle rule on the step samples, exact to the
 order of the scheme for a periodic signal) and the phase condition ``gᵀ b_1 = 0`` (the sine
 coefficient of the coordinate ``gᵀ q`` vanishes, as in

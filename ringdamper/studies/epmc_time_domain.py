@@ -127,6 +127,22 @@ def compare(structure_at, contacts: FrictionContacts, alpha: np.ndarray, harmoni
     return table.merge(pd.DataFrame(extra), on=["H", "alpha"], how="left")
 
 
+def step_convergence(structure: Structure, contacts: FrictionContacts, backbone: Backbone, i: int,
+                     n_steps=(256, 512, 1024, 2048, 4096, 8192, 16384)) -> pd.DataFrame:
+    """Shooting's ω, ζ at point ``i`` of ``backbone`` for every step count of ``n_steps`` and
+    their differences to the finest (the integrator's Δt convergence)."""
+    x0, omega, xi = hbm_state(backbone, contacts, i)
+    g = phase_row(backbone)
+    rows = []
+    for n in n_steps:
+        res = shoot(structure, contacts, backbone.alpha[i], x0, omega, xi, g, n_steps=n)
+        rows.append(dict(alpha=backbone.alpha[i], n_steps=n, omega=res.omega, zeta=res.zeta,
+                         newton=res.iterations))
+    t = pd.DataFrame(rows)
+    return t.assign(d_omega_rel=(t.omega / t.omega.iloc[-1] - 1).abs(),
+                    d_zeta=(t.zeta - t.zeta.iloc[-1]).abs())
+
+
 def return_check(structure_at, contacts: FrictionContacts, alpha: np.ndarray, H: int,
                  nt: int = 1024, n_steps: int = 2048) -> pd.DataFrame:
     """Return error of every converged point of the H-harmonic backbone (a periodicity check of

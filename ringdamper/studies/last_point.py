@@ -82,6 +82,9 @@ def run_study(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: 
     the campaign's H on its grid, ``fine`` at ``n_harmonics`` on :func:`fine_grid`."""
     study = config["studies"]["last_point"]
     alpha = amplitude_grid(config["dnnm"])
+    if study["points_below"] >= alpha.size:
+        raise ValueError(f"studies.last_point.points_below = {study['points_below']} must be below "
+                         f"dnnm.n_amplitudes = {alpha.size}")
     fine = fine_grid(alpha, study["points_below"], study["n_points"])
     return {"campaign": trace(reduced, static, config, target_hz, alpha, config["dnnm"]["n_harmonics"]),
             "fine": trace(reduced, static, config, target_hz, fine, study["n_harmonics"])}

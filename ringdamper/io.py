@@ -65,6 +65,7 @@ CONFIG_SECTIONS = {
     "one_at_a_time": _SURROGATE + ("exploration",),
     "optimum": _SURROGATE + ("exploration",),
     "sobol": _SURROGATE + ("sensitivity",),
+    "last_point": _DNNM + ("studies",),
 }
 
 

@@ -6,6 +6,7 @@ never make the reduced target frequency worse; the contact calibration's chosen 
 import numpy as np
 import pandas as pd
 import pytest
+import xarray as xr
 import yaml
 from tests.snakemake_run import REPO, run_snakemake
 
@@ -24,6 +25,7 @@ SMALL_STUDIES = {
     "mesh_convergence": {"levels": [[1, 1], [1, 2]]},
     "reduction_convergence": {"n_fixed_interface_modes": [10, 20], "n_interface_modes": [5, 10],
                               "band": [0.99, 1.0]},
+    "last_point": {"points_below": 2, "n_points": 4, "n_harmonics": 3},   # reduced.nc has H = 3 here
 }
 
 
@@ -52,6 +54,18 @@ def test_study_rules_run_on_a_small_setting(tmp_path):
     for n_if, rows in red.groupby("n_if"):
         assert rows.sort_values("n_fi").target_error.is_monotonic_decreasing
     assert (studies / "reduction_convergence.md").read_text().startswith("| n_fi |")
+
+    campaign_trace, fine_trace = (xr.open_dataset(studies / "last_point" / f"{name}.nc")
+                                  for name in ("campaign", "fine"))
+    grid = campaign_trace.amplitude.values
+    assert fine_trace.amplitude.values == pytest.approx(np.geomspace(grid[-3], grid[-1], 4), rel=1e-12)
+    assert fine_trace.attrs["n_harmonics"] == 3
+    for trace in (campaign_trace, fine_trace):
+        usable = np.isin(trace.status.values, (0, 3))
+        assert usable[0]
+        ratio, n_open = trace.normal_force_ratio_min.values[usable], trace.open_pairs.values[usable]
+        assert np.all(np.isfinite(ratio)) and np.all((n_open > 0) == (ratio <= 0))
+    assert (studies / "last_point" / "last_point_separation.png").stat().st_size > 0
 
     cc = studies / "contact_calibration"
     coarse = pd.read_csv(cc / "coarse.csv")

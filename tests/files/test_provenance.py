@@ -29,10 +29,11 @@ def test_a_written_file_carries_versions_commit_and_the_config_hash(tmp_path, sm
 
 
 @pytest.mark.parametrize("rule", sorted(CONFIG_SECTIONS))
-def test_the_hash_follows_exactly_the_sections_a_file_depends_on(small_config, rule):
-    base = provenance(small_config, rule)["config_sha256"]
-    for section in small_config:
-        changed = copy.deepcopy(small_config)
+def test_the_hash_follows_exactly_the_sections_a_file_depends_on(campaign_config, rule):
+    """On the full configuration (the test one leaves out the study sections)."""
+    base = provenance(campaign_config, rule)["config_sha256"]
+    for section in campaign_config:
+        changed = copy.deepcopy(campaign_config)
         changed[section] = {"changed": True}
         moved = provenance(changed, rule)["config_sha256"] != base
         assert moved == (section in CONFIG_SECTIONS[rule]), (rule, section)

@@ -67,18 +67,28 @@ def amplitude_grid(dnnm_cfg: dict) -> np.ndarray:
     return np.geomspace(dnnm_cfg["amplitude_min"], dnnm_cfg["amplitude_max"], dnnm_cfg["n_amplitudes"])
 
 
+def solve_backbone(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: float,
+                   alpha: np.ndarray, n_harmonics: int, nt: int | None = None):
+    """EPMC backbone of the mode nearest ``target_hz`` at ``n_harmonics`` (``nt`` AFT samples, default
+    :func:`ringdamper.nonlinear.fourier.default_nt`) on ``alpha``, and its E-EBM:
+    ``(backbone, contacts, eebm result, omega_stuck)``."""
+    cfg = config["dnnm"]
+    structure = structure_from_reduced(reduced, n_harmonics)
+    contacts = contacts_from_static(static, config["contact"], cfg["friction_law"])
+    omega_stuck = target_stuck_frequency(structure, contacts, target_hz)
+    backbone = epmc(structure, contacts, alpha, H=n_harmonics, nt=nt, omega_target=omega_stuck,
+                    tol=cfg.get("continuation_tolerance", 1e-8))
+    return backbone, contacts, eebm(backbone, zeta_s=cfg["structural_damping_ratio"]), omega_stuck
+
+
 def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: float,
              omega_stuck_default: float) -> xr.Dataset:
     """Backbone (EPMC) of the mode nearest ``target_hz`` and its E-EBM, as the dnnm.nc dataset."""
     cfg = config["dnnm"]
     start = time.perf_counter()
-    structure = structure_from_reduced(reduced, cfg["n_harmonics"])
-    contacts = contacts_from_static(static, config["contact"], cfg["friction_law"])
     alpha = amplitude_grid(cfg)
-    omega_stuck = target_stuck_frequency(structure, contacts, target_hz)
-    backbone = epmc(structure, contacts, alpha, H=cfg["n_harmonics"], nt=cfg["n_time_samples"],
-                    omega_target=omega_stuck, tol=cfg.get("continuation_tolerance", 1e-8))
-    res = eebm(backbone, zeta_s=cfg["structural_damping_ratio"])
+    backbone, contacts, res, omega_stuck = solve_backbone(reduced, static, config, target_hz, alpha,
+                                                          cfg["n_harmonics"], cfg["n_time_samples"])
     highest = highest_harmonic_fraction(backbone.model.modal, backbone.eta, backbone.omega)
     warn_truncation(highest, alpha)
     values = {"omega0": normalised_frequency(res.omega, omega_stuck_default), "frequency": res.frequency,
@@ -91,7 +101,7 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
              "structural_damping_ratio": cfg["structural_damping_ratio"],
              "omega_stuck": omega_stuck, "omega_stuck_default": omega_stuck_default,
              "wall_time_s": time.perf_counter() - start}
-    return dnnm_dataset(alpha, structure.npairs, values, res.status, attrs)
+    return dnnm_dataset(alpha, contacts.npairs, values, res.status, attrs)
 
 
 #: The variables of dnnm.nc besides ``status``: name -> (dims, units, long_name). The one declaration

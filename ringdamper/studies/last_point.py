@@ -20,13 +20,11 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ringdamper.io import variable
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import Backbone, epmc
+from ringdamper.io import declared_dataset, variable
+from ringdamper.nonlinear.epmc import Backbone
 from ringdamper.nonlinear.fourier import Fourier
 from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.stage import (amplitude_grid, contacts_from_static, structure_from_reduced,
-                                        target_stuck_frequency)
+from ringdamper.nonlinear.stage import DNNM_VARIABLES, STATUS_MEANING, amplitude_grid, solve_backbone
 
 
 def normal_force_ratio(backbone: Backbone, contacts: FrictionContacts, nt: int = 256) -> np.ndarray:
@@ -47,34 +45,30 @@ def fine_grid(campaign_alpha: np.ndarray, points_below: int, n_points: int) -> n
     return np.geomspace(campaign_alpha[-1 - points_below], campaign_alpha[-1], n_points)
 
 
+#: The variables of a trace: those of dnnm.nc it shares, and the separation indicator.
+TRACE_VARIABLES = {
+    **{name: DNNM_VARIABLES[name] for name in ("frequency", "zeta", "gamma", "q_res_z")},
+    "normal_force_ratio_min": (
+        "amplitude", "1",
+        "smallest unclipped normal force over the period relative to its preload, over the preloaded pairs"),
+    "open_pairs": ("amplitude", "1", "preloaded pairs that lift off during part of the period (-1: unusable point)"),
+}
+
+
 def trace(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: float, alpha: np.ndarray,
           n_harmonics: int) -> xr.Dataset:
     """Backbone of the target mode at ``n_harmonics`` on ``alpha``: status, frequency, ζ, γ, |q_res,z|,
     n_min and the number of open pairs per amplitude."""
-    cfg = config["dnnm"]
-    structure = structure_from_reduced(reduced, n_harmonics)
-    contacts = contacts_from_static(static, config["contact"], cfg["friction_law"])
-    backbone = epmc(structure, contacts, alpha, H=n_harmonics,
-                    omega_target=target_stuck_frequency(structure, contacts, target_hz),
-                    tol=cfg.get("continuation_tolerance", 1e-8))
-    res = eebm(backbone, zeta_s=cfg["structural_damping_ratio"])
+    backbone, contacts, res, _ = solve_backbone(reduced, static, config, target_hz, alpha, n_harmonics)
     ratio = normal_force_ratio(backbone, contacts)
     usable = np.isin(res.status, (0, 3))
-    open_pairs = np.where(usable, np.sum(ratio <= 0.0, axis=1), -1)
+    values = {"frequency": res.frequency, "zeta": res.zeta, "gamma": res.gamma, "q_res_z": res.q_res_peak,
+              "normal_force_ratio_min": np.where(usable, ratio.min(axis=1), np.nan),
+              "open_pairs": np.where(usable, np.sum(ratio <= 0.0, axis=1), -1).astype(np.int16)}
     coords = {"amplitude": variable("amplitude", alpha, "kg0.5 m", "modal amplitude alpha")}
-    data = {
-        "status": variable("amplitude", np.asarray(res.status, np.int8), "1", "dNNM point status"),
-        "frequency": variable("amplitude", res.frequency, "Hz", "resonant frequency"),
-        "zeta": variable("amplitude", res.zeta, "1", "modal damping ratio of the dNNM"),
-        "gamma": variable("amplitude", res.gamma, "N", "forcing level (E-EBM)"),
-        "q_res_z": variable("amplitude", res.q_res_peak, "m", "peak blade-tip Z displacement"),
-        "normal_force_ratio_min": variable(
-            "amplitude", np.where(usable, ratio.min(axis=1), np.nan), "1",
-            "smallest unclipped normal force over the period relative to its preload, over the preloaded pairs"),
-        "open_pairs": variable("amplitude", open_pairs.astype(np.int16), "1",
-                               "preloaded pairs that lift off during part of the period (-1: unusable point)"),
-    }
-    return xr.Dataset(data, coords=coords, attrs={"n_harmonics": n_harmonics})
+    ds = declared_dataset("last-point trace", TRACE_VARIABLES, values, coords, {"n_harmonics": n_harmonics})
+    ds["status"] = variable("amplitude", np.asarray(res.status, np.int8), "1", STATUS_MEANING)
+    return ds
 
 
 def run_study(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: float) -> dict[str, xr.Dataset]:

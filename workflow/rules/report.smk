@@ -81,12 +81,13 @@ rule report_tables:
         "../../scripts/report_tables.py"
 
 
-# The charts of the fidelity study, the method-limit studies and the last-point analysis are measured
-# by `make fidelity` and `make studies` (hours of CPU, not part of the campaign) and committed under
+# The charts of the fidelity study, the method-limit studies, the last-point analysis and the EPMC's
+# time-domain check are measured by `make fidelity`, `make studies` and `python -m
+# tools.epmc_time_domain` (minutes to hours of CPU, not part of the campaign) and committed under
 # docs/figures/; the report shows the committed charts beside the campaign's own figures.
 STUDY_CHARTS = ("fidelity_dials", "fidelity_mesh", "fidelity_pareto", "method_limits_eebm_validity",
                 "method_limits_harmonics", "method_limits_kriging_coverage", "method_limits_stability",
-                "last_point_separation")
+                "last_point_separation", "epmc_time_domain")
 
 
 rule study_charts:

@@ -172,9 +172,11 @@ def _measures(model: CondensedHBM, ev) -> tuple[float, float]:
     return abs(q[1]), time_peak(q)
 
 
-def resonance_peak(frf: FRF, measure: str = "peak", xtol: float = 1e-12) -> Peak:
+def resonance_peak(frf: FRF, measure: str = "peak", rtol: float = 1e-6) -> Peak:
     """Maximum of ``measure`` (``"peak"``: time-signal peak; ``"h1"``: first-harmonic magnitude)
-    along the branch, refined between the neighbours of the best point."""
+    along the branch, refined between the neighbours of the best point to ``rtol`` times their
+    distance in arc length (the measure is quadratic at its maximum, so its relative error is of
+    order ``rtol²``)."""
     if measure not in ("peak", "h1"):
         raise ValueError("measure must be 'peak' or 'h1'")
     if not frf.points:
@@ -214,7 +216,7 @@ def resonance_peak(frf: FRF, measure: str = "peak", xtol: float = 1e-12) -> Peak
         return -_measures(model, res.payload)[k] if res.converged else 0.0
 
     opt = minimize_scalar(objective, bounds=(sig[0], sig[1]), method="bounded",
-                          options={"xatol": xtol})
+                          options={"xatol": rtol * (sig[1] - sig[0])})
     res = cache.get(opt.x) or solve(opt.x)
     if not res.converged:
         return best

@@ -17,7 +17,6 @@ RESULTS = config["results"]
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/sampling.smk"
-include: "workflow/rules/geometry.smk"
 include: "workflow/rules/modal.smk"
 include: "workflow/rules/static.smk"
 include: "workflow/rules/reduction.smk"

@@ -4,6 +4,7 @@ rule static:
     output:
         nc=f"{RESULTS}/geometry/{{gid}}/static.nc",
         vtu=f"{RESULTS}/geometry/{{gid}}/static.vtu",
+        mesh=f"{RESULTS}/geometry/{{gid}}/mesh.vtu",
     params:
         kappa=kappa_of,
     threads: 1

@@ -12,7 +12,8 @@ ds = read_netcdf(sm.input[0])
 mask = usable_mask(ds)
 check_training(ds, mask, settings["min_training"])
 train = (ds.split == "training").values
-fit = fit_campaign(ds.isel(geometry=train), mask=mask.isel(geometry=train), settings=settings)
+fit = fit_campaign(ds.isel(geometry=train), mask=mask.isel(geometry=train), settings=settings,
+                   workers=sm.threads)
 log.info("fitted %d models; Q2 per output (median over amplitudes): %s", int((fit.status < 2).sum()),
          {str(o): round(float(fit.q2.sel(output=o).median()), 4) for o in fit.output.values})
 write_netcdf(fit, sm.output[0], sm.config, sm.rule)

@@ -67,6 +67,7 @@ J. Glob. Optim. 13: 455–492; Rasmussen & Williams (2006) Gaussian Processes fo
 from __future__ import annotations
 
 import logging
+from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 import scipy.linalg as sla
@@ -372,7 +373,22 @@ def _check_inputs(dataset: xr.Dataset, outputs) -> np.ndarray:
     return kappa
 
 
-def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict | None = None) -> xr.Dataset:
+def _fit_task(task):
+    """:func:`fit_model` of one ``(x, y, settings, name)`` (a top-level function: process pools pickle it)."""
+    return fit_model(*task)
+
+
+def _fit_all(tasks: list, workers: int) -> list:
+    """:func:`fit_model` of every task, in order, on ``workers`` processes (each fit is seeded by the
+    settings alone, so the models do not depend on the number of workers)."""
+    if workers <= 1 or len(tasks) < 2:
+        return [_fit_task(t) for t in tasks]
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        return list(pool.map(_fit_task, tasks, chunksize=max(1, len(tasks) // (4 * workers))))
+
+
+def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict | None = None,
+                 workers: int = 1) -> xr.Dataset:
     """One Kriging model per (output, amplitude) on the usable geometries → the ``kriging.nc`` Dataset.
 
     dataset: dims (geometry, amplitude), coords kappa1..3 (on geometry), data vars ``outputs``.
@@ -380,6 +396,7 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
         caller excludes validation geometries and failed solves; a NaN/inf output under the mask is an
         error naming the output and amplitude. Geometries never used are not stored.
     settings: the ``surrogate`` section; keys and defaults in DEFAULT_SETTINGS (see check_settings).
+    workers: processes fitting the models side by side (the result does not depend on it).
     Layout of the result: docs/surrogate.md.
     """
     s = check_settings(settings)
@@ -393,12 +410,9 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
     nugget, loglik, q2s = (np.full((n_out, n_amp), np.nan) for _ in range(3))
     status = np.full((n_out, n_amp), STATUS_UNFITTED, dtype=np.int8)
     n_train = use.sum(axis=0)
-    per_output = {}
-    for io, out in enumerate(outputs):
-        values = dataset[out].transpose("geometry", "amplitude").values.astype(float)
-        beta, sigma, factor = np.full(n_amp, np.nan), np.full(n_amp, np.nan), np.full(n_amp, np.nan)
-        loo = np.full((n_amp, len(kappa)), np.nan)
-        train = np.where(use, values, np.nan).T
+    values = {out: dataset[out].transpose("geometry", "amplitude").values.astype(float) for out in outputs}
+    tasks, keys = [], []
+    for out in outputs:
         for ia in range(n_amp):
             rows = np.flatnonzero(use[:, ia])
             amp = float(dataset["amplitude"].values[ia])
@@ -406,7 +420,19 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
                 log.warning("%s at amplitude %.4g: %d usable geometries < surrogate.min_training = %d; not fitted",
                             out, amp, len(rows), s["min_training"])
                 continue
-            model, ll = fit_model(kappa[rows], values[rows, ia], s, name=f"{out} at amplitude[{ia}] = {amp:.6g}")
+            tasks.append((kappa[rows], values[out][rows, ia], s, f"{out} at amplitude[{ia}] = {amp:.6g}"))
+            keys.append((out, ia))
+    fitted = dict(zip(keys, _fit_all(tasks, workers)))
+    per_output = {}
+    for io, out in enumerate(outputs):
+        beta, sigma, factor = np.full(n_amp, np.nan), np.full(n_amp, np.nan), np.full(n_amp, np.nan)
+        loo = np.full((n_amp, len(kappa)), np.nan)
+        train = np.where(use, values[out], np.nan).T
+        for ia in range(n_amp):
+            if (out, ia) not in fitted:
+                continue
+            rows = np.flatnonzero(use[:, ia])
+            model, ll = fitted[out, ia]
             status[io, ia] = STATUS_CONSTANT if model.is_constant else STATUS_GP
             scale[io, ia], nugget[io, ia], loglik[io, ia] = model.scale, model.nugget, ll
             beta[ia], sigma[ia], factor[ia] = model.beta, model.sigma, model.loo_variance_factor()

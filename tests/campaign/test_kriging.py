@@ -170,6 +170,17 @@ def test_campaign_dataset_layout_and_degenerate_outputs():
     assert model.is_constant and model.beta == pytest.approx(0.3)
 
 
+def test_models_do_not_depend_on_the_number_of_worker_processes():
+    ds = campaign_dataset()
+    serial = K.fit_campaign(ds, settings=FAST)
+    pooled = K.fit_campaign(ds, settings=FAST, workers=2)
+    for name, var in serial.data_vars.items():
+        if var.dtype.kind == "f":
+            np.testing.assert_array_equal(var.values, pooled[name].values, err_msg=name)
+        else:
+            assert (var.values == pooled[name].values).all(), name
+
+
 def test_nan_training_value_is_rejected_with_its_name():
     ds = campaign_dataset()
     ds["zeta"][4, 1] = np.nan

@@ -30,9 +30,9 @@ rule kriging:
         f"{RESULTS}/campaign/dataset.nc",
     output:
         f"{RESULTS}/surrogate/kriging.nc",
-    threads: 1
+    threads: 2
     resources:
-        mem_mb=scaled(600),
+        mem_mb=scaled(1200),
         runtime=10,
     log:
         f"{RESULTS}/logs/kriging.log",

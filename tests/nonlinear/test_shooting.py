@@ -18,6 +18,11 @@ against it on a chain whose EPMC frequency rises with amplitude.
   ~1e-4 at most), and the rise is in the time-domain answer (ω > 1.05 ω_stuck). The HBM
   solution returns to its start after one period within 2e-3 (measured ≤ 1e-3), the same
   state with the stuck frequency misses it by more than 0.2 (measured ≥ 0.37).
+* Spurious branch (``jenkins_chain(179)`` at H = 3): the HBM finds a branch no other H finds
+  (ω ≈ 0.6 ω_stuck, ζ ≈ 0.37). Both checks of a campaign point flag it at the first slipping
+  amplitude: one period of the equation of motion from its state misses it by more than 0.2
+  (measured 1.26; a true orbit ≤ 2e-3 above), and the harmonic-truncation indicator ε_H exceeds
+  its threshold (measured 1.5e-2 = 50 × 3e-4; asserted > 10 ×).
 """
 from functools import lru_cache
 
@@ -29,12 +34,14 @@ from ringdamper.nonlinear.epmc import epmc, linear_limit
 from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.shooting import (JenkinsTimeModel, hbm_state, march, phase_row,
                                            return_error, shoot, shooting_residual)
+from ringdamper.nonlinear.truncation import THRESHOLD, highest_harmonic_fraction
 
 from .systems import (cyclic_structure, describing_function, jenkins_chain, multi_dof,
                       one_dof)
 from .test_continuation_family import chain_grid
 
 RISING_SEED = 149
+SPURIOUS_SEED = 179
 
 
 def _stuck(st, c):
@@ -114,6 +121,18 @@ def test_time_domain_confirms_the_rising_epmc_frequency(i):
     assert res.omega > 1.05 * w_stuck
     assert return_error(st, c, x0, omega, xi, 1024) <= 2e-3
     assert return_error(st, c, x0, w_stuck, xi, 1024) >= 0.2
+
+
+def test_spurious_low_harmonic_branch_is_flagged():
+    st, c = jenkins_chain(SPURIOUS_SEED, H=3)
+    alpha = chain_grid(st, c, n=16)
+    bb = epmc(st, c, alpha, H=3, nt=128, tol=1e-8)
+    i = 4                                                # first slipping amplitude
+    w_stuck = _stuck(st, c)[0]
+    assert bb.status[i] == Status.CONVERGED and bb.omega[i] < 0.75 * w_stuck     # the odd branch
+    x0, omega, xi = hbm_state(bb, c, i)
+    assert return_error(st, c, x0, omega, xi, 1024) >= 0.2
+    assert highest_harmonic_fraction(bb.model.modal, bb.eta, bb.omega)[i] > 10 * THRESHOLD
 
 
 def test_bad_input_is_refused():

@@ -28,8 +28,10 @@ CHAIN_FAILED = 99  # status of every point of a geometry whose chain failed befo
 STATUS_NAMES = {int(s): s.name.lower().replace("_", " ") for s in Status} | {CHAIN_FAILED: "chain failed"}
 
 # dnnm.nc scalars kept in the dataset (optional ones are NaN where a file lacks them)
-SCALARS = ("omega0", "frequency", "zeta", "gamma", "phi", "q_res_z", "q_res_z_h1", "rigid_body_imbalance")
-OPTIONAL = ("rigid_body_imbalance", "q_res_z_h1")
+SCALARS = ("omega0", "frequency", "zeta", "gamma", "phi", "q_res_z", "q_res_z_h1", "rigid_body_imbalance",
+           "highest_harmonic_energy", "normal_force_ratio_min", "lifting_pairs")
+OPTIONAL = ("rigid_body_imbalance", "q_res_z_h1", "highest_harmonic_energy", "normal_force_ratio_min",
+            "lifting_pairs")
 # the outputs the surrogates model and that must be finite at a usable point
 SURROGATE_OUTPUTS = ("q_res_z", "omega0", "zeta", "gamma")
 

@@ -15,10 +15,12 @@ import time
 import numpy as np
 import xarray as xr
 
+from ringdamper.nonlinear.continuation import Status
 from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc
 from ringdamper.nonlinear.structure import HarmonicData, Structure
+from ringdamper.nonlinear.separation import separation_indicators, warn_separation
 from ringdamper.nonlinear.truncation import highest_harmonic_fraction, warn_truncation
 from ringdamper.io import declared_dataset, nan_values, variable
 from ringdamper.nonlinear.normalisation import normalised_frequency
@@ -91,11 +93,13 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
                                                           cfg["n_harmonics"], cfg["n_time_samples"])
     highest = highest_harmonic_fraction(backbone.model.modal, backbone.eta, backbone.omega)
     warn_truncation(highest, alpha)
+    n_min, lifting = separation_indicators(backbone, contacts, np.isin(res.status, (Status.CONVERGED, Status.DRIFT)))
+    warn_separation(lifting, alpha, cfg["n_harmonics"])
     values = {"omega0": normalised_frequency(res.omega, omega_stuck_default), "frequency": res.frequency,
               "zeta": res.zeta, "gamma": res.gamma, "phi": res.phi, "q_res_z": res.q_res_peak,
               "q_res_z_h1": res.q_res_h1, "energy_dissipated": res.energy_dissipated,
               "energy_damping": res.e_damp, "rigid_body_imbalance": backbone.drift,
-              "highest_harmonic_energy": highest}
+              "highest_harmonic_energy": highest, "normal_force_ratio_min": n_min, "lifting_pairs": lifting}
     attrs = {"kappa": np.asarray(static.attrs["kappa"], dtype=float), "n_harmonics": cfg["n_harmonics"],
              "n_time_samples": cfg["n_time_samples"], "friction_law": cfg["friction_law"],
              "structural_damping_ratio": cfg["structural_damping_ratio"],
@@ -124,6 +128,11 @@ DNNM_VARIABLES = {
     "highest_harmonic_energy": (
         "amplitude", "1",
         "fraction of the vibration energy in the highest harmonic H (truncation indicator; NaN at H = 1)"),
+    "normal_force_ratio_min": (
+        "amplitude", "1",
+        "smallest unclipped normal force over the period relative to its preload, over the preloaded pairs "
+        "(separation indicator: <= 0 where a pair lifts off)"),
+    "lifting_pairs": ("amplitude", "1", "number of preloaded pairs that lift off during part of the period"),
 }
 STATUS_MEANING = ("0 converged, 1 no convergence, 2 not reached, 3 converged with the ring's mean "
                   "rigid-body equilibrium unbalanced (ratcheting), 4 budget, 99 the geometry's chain failed "

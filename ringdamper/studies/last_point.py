@@ -4,14 +4,10 @@ last grid amplitude").
 On the default ring γ and ζ jump between the last two grid amplitudes (α = 2.46e-4 → 3.0e-4 kg^½ m).
 The study tells a physical change of the contact state from a numerical artefact: it traces the
 default ring's backbone twice, at the campaign's harmonics on the campaign grid and at more
-harmonics on a fine grid over the top of the range, and records at every amplitude how far the
-ring–blisk pairs are from opening,
-
-    n_min(α) = min over preloaded pairs p and time t of  N_p(t) / N0_p,
-    N_p(t) = N0_p + kn_p d_n,p(t)                                  (unclipped normal force),
-
-which is 1 in the stuck linear regime and crosses 0 where the first pair lifts off for part of the
-period, with the number of pairs that do (``open_pairs``). A rise that starts where n_min crosses
+harmonics on a fine grid over the top of the range, with the separation indicators every dnnm.nc
+carries (:mod:`ringdamper.nonlinear.separation`): n_min(α), the smallest unclipped normal force over
+the period relative to its preload (1 stuck, crossing 0 where the first pair lifts off), and the
+number of lifting pairs. A rise that starts where n_min crosses
 0, and that a finer grid and more harmonics follow smoothly, is the onset of separation; a rise
 with n_min well above 0, or one the fine grid does not reproduce, would be a branch jump.
 """
@@ -21,22 +17,8 @@ import numpy as np
 import xarray as xr
 
 from ringdamper.io import declared_dataset, variable
-from ringdamper.nonlinear.epmc import Backbone
-from ringdamper.nonlinear.fourier import Fourier
-from ringdamper.nonlinear.friction import FrictionContacts
+from ringdamper.nonlinear.separation import separation_indicators
 from ringdamper.nonlinear.stage import DNNM_VARIABLES, STATUS_MEANING, amplitude_grid, solve_backbone
-
-
-def normal_force_ratio(backbone: Backbone, contacts: FrictionContacts, nt: int = 256) -> np.ndarray:
-    """``min_t N_p(t)/N0_p`` per grid amplitude and preloaded pair, ``(nα, n_preloaded)``, from the
-    normal contact displacements of the backbone (slot layout of :mod:`ringdamper.nonlinear.fourier`,
-    pair-major ``(n, t1, t2)`` coordinates), synthesised on ``nt`` samples per period."""
-    fourier = Fourier(backbone.H, nt)
-    preloaded = np.flatnonzero(contacts.N0 > 0)
-    d_normal = backbone.d[:, :, 3 * preloaded]                         # (nα, C, n_preloaded)
-    samples = np.einsum("tc,acp->atp", fourier.E, d_normal)            # (nα, nt, n_preloaded)
-    n0, kn = contacts.N0[preloaded], contacts.kn[preloaded]
-    return np.min(1.0 + kn * samples / n0, axis=1)
 
 
 def fine_grid(campaign_alpha: np.ndarray, points_below: int, n_points: int) -> np.ndarray:
@@ -45,14 +27,9 @@ def fine_grid(campaign_alpha: np.ndarray, points_below: int, n_points: int) -> n
     return np.geomspace(campaign_alpha[-1 - points_below], campaign_alpha[-1], n_points)
 
 
-#: The variables of a trace: those of dnnm.nc it shares, and the separation indicator.
-TRACE_VARIABLES = {
-    **{name: DNNM_VARIABLES[name] for name in ("frequency", "zeta", "gamma", "q_res_z")},
-    "normal_force_ratio_min": (
-        "amplitude", "1",
-        "smallest unclipped normal force over the period relative to its preload, over the preloaded pairs"),
-    "open_pairs": ("amplitude", "1", "preloaded pairs that lift off during part of the period (-1: unusable point)"),
-}
+#: The variables of a trace: those of dnnm.nc it shares, the separation indicators included.
+TRACE_VARIABLES = {name: DNNM_VARIABLES[name] for name in
+                   ("frequency", "zeta", "gamma", "q_res_z", "normal_force_ratio_min", "lifting_pairs")}
 
 
 def trace(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: float, alpha: np.ndarray,
@@ -60,11 +37,10 @@ def trace(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: floa
     """Backbone of the target mode at ``n_harmonics`` on ``alpha``: status, frequency, ζ, γ, |q_res,z|,
     n_min and the number of open pairs per amplitude."""
     backbone, contacts, res, _ = solve_backbone(reduced, static, config, target_hz, alpha, n_harmonics)
-    ratio = normal_force_ratio(backbone, contacts)
     usable = np.isin(res.status, (0, 3))
+    n_min, lifting = separation_indicators(backbone, contacts, usable)
     values = {"frequency": res.frequency, "zeta": res.zeta, "gamma": res.gamma, "q_res_z": res.q_res_peak,
-              "normal_force_ratio_min": np.where(usable, ratio.min(axis=1), np.nan),
-              "open_pairs": np.where(usable, np.sum(ratio <= 0.0, axis=1), -1).astype(np.int16)}
+              "normal_force_ratio_min": n_min, "lifting_pairs": lifting}
     coords = {"amplitude": variable("amplitude", alpha, "kg0.5 m", "modal amplitude alpha")}
     ds = declared_dataset("last-point trace", TRACE_VARIABLES, values, coords, {"n_harmonics": n_harmonics})
     ds["status"] = variable("amplitude", np.asarray(res.status, np.int8), "1", STATUS_MEANING)

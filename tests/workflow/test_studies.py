@@ -63,7 +63,7 @@ def test_study_rules_run_on_a_small_setting(tmp_path):
     for trace in (campaign_trace, fine_trace):
         usable = np.isin(trace.status.values, (0, 3))
         assert usable[0]
-        ratio, n_open = trace.normal_force_ratio_min.values[usable], trace.open_pairs.values[usable]
+        ratio, n_open = trace.normal_force_ratio_min.values[usable], trace.lifting_pairs.values[usable]
         assert np.all(np.isfinite(ratio)) and np.all((n_open > 0) == (ratio <= 0))
     assert (studies / "last_point" / "last_point_separation.png").stat().st_size > 0
 

@@ -48,7 +48,7 @@ fidelity: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --keep-going fidelity
 	mkdir -p docs/fidelity
 	cp results/fidelity/fidelity_*.png docs/figures/
-	cp results/fidelity/dials.csv results/fidelity/mesh.csv results/fidelity/mesh_limits.csv \
+	cp results/fidelity/dials.csv results/fidelity/mesh.csv results/fidelity/mesh_limits.csv results/fidelity/mesh_backbone.csv \
 	   results/fidelity/surrogate.csv results/fidelity/forced.csv results/fidelity/summary.yaml docs/fidelity/
 	for f in results/fidelity/limits/*.png; do cp $$f docs/figures/method_limits_$$(basename $$f); done
 

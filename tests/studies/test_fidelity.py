@@ -81,6 +81,7 @@ SMALL_FIDELITY = {
               {"name": "amplitudes", "key": "dnnm.n_amplitudes", "values": [5, 8, 16]}],
     "mesh_levels": [[1, 1], [2, 1], [3, 1]],
     "mesh_families": ["1D", "1B"],
+    "mesh_backbone": {"factors": [1, 2], "n_harmonics": 1, "n_time_samples": 16},
     "training_sizes": [5, 8],
     "tolerance": 0.01,
 }
@@ -88,12 +89,14 @@ SMALL_FIDELITY = {
 
 @pytest.mark.slow
 def test_fidelity_rules_run_on_the_coarse_configuration(tmp_path):
-    """dials.csv and mesh.csv of a two-dial, one-ring study on the coarse mesh (8-node bricks)."""
+    """dials.csv, mesh.csv and mesh_backbone.csv of a two-dial, one-ring study on the coarse mesh
+    (8-node bricks). The refined mesh has more contact pairs and, being a conforming refinement, a
+    softer structure: the backbone's frequency at the lowest response level drops."""
     small = yaml.safe_load((REPO / "tests" / "config_small.yaml").read_text())
     (tmp_path / "config.yaml").write_text(yaml.safe_dump({**small, "fidelity": SMALL_FIDELITY}))
     fid = tmp_path / "results" / "fidelity"
     run = run_snakemake(tmp_path / "results", tmp_path / "config.yaml", fid / "dials.csv", fid / "mesh.csv",
-                        cores=2, timeout=600)
+                        fid / "mesh_backbone.csv", cores=2, timeout=600)
     assert run.returncode == 0, run.stderr[-3000:]
     dials = pd.read_csv(fid / "dials.csv")
     assert len(dials) == 5 and set(dials.dial) == {"harmonics", "amplitudes"}
@@ -107,6 +110,10 @@ def test_fidelity_rules_run_on_the_coarse_configuration(tmp_path):
     f1d = limits.set_index("family").limit_hz["1D"]
     assert mesh.frequency_1D.is_monotonic_decreasing and f1d < mesh.frequency_1D.min()   # from above
     assert abs(mesh.error_1D.iloc[-1]) < abs(mesh.error_1D.iloc[0])
+    backbone = pd.read_csv(fid / "mesh_backbone.csv").set_index("factor")
+    assert backbone.pairs[2] > backbone.pairs[1] and backbone.error_max[2] == 0
+    assert backbone.freq_low[2] < backbone.freq_low[1]
+    assert np.isfinite(backbone.zeta_max).all() and (backbone.zeta_max > 0).all()
 
 
 def test_choice_is_the_cheapest_accurate_setting_beyond_timing_noise():

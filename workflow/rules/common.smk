@@ -20,8 +20,36 @@ def scaled(mem_mb):
     return lambda wildcards, attempt: mem_mb * attempt
 
 
+# The fidelity study's resources, from the committed measurements of the last `make fidelity` (docs/fidelity/*.csv; the
+# rules' convention of common.smk, with CPU instead of wall times: that run's walls were 3-10x its CPU
+# on the loaded machine): a dial case peaks at 792 MB and 223 s of chain CPU (H = 5 on the optimum);
+# a mesh level at the peak RSS of MESH_LEVEL_PEAK_MB (the 3x quadratic one 7.0 GB, 149 s); the
+# surrogate study's 15 designs fit in 224 s of CPU.
+MESH_LEVEL_PEAK_MB = {(1, 1): 199, (2, 1): 258, (3, 1): 667, (1, 2): 322, (2, 2): 1713, (3, 2): 6967}
+
+
+# Peak RSS (MB) of the whole chain on the default ring at H = 1 (fidelity.mesh_backbone) per mesh
+# refinement factor (measured: the reduction of the refined sector dominates; chain CPU 6 s and 195 s).
+MESH_BACKBONE_PEAK_MB = {1: 443, 2: 5302}
+
+
+def mesh_backbone_mem_mb(wildcards, attempt):
+    """Twice the measured peak of the factor (beyond the measured ones, scaled with the element count,
+    factor³), per attempt."""
+    factor = int(wildcards.factor)
+    largest = max(MESH_BACKBONE_PEAK_MB)
+    peak = MESH_BACKBONE_PEAK_MB.get(factor, MESH_BACKBONE_PEAK_MB[largest] * (factor / largest) ** 3)
+    return int(2 * peak * attempt)
+
+
+def mesh_level_mem_mb(wildcards, attempt):
+    """Twice the measured peak of the level (of the 3x quadratic one if not measured), per attempt."""
+    peak = MESH_LEVEL_PEAK_MB.get((int(wildcards.factor), int(wildcards.order)), MESH_LEVEL_PEAK_MB[3, 2])
+    return 2 * peak * attempt
+
+
 # The optimum found on the surrogate is a real geometry: gid ``optimum``, whose kappa is only known
-# once the checkpoint ``optimum`` has written optimum.yaml. Its mesh, static, reduced and dnnm jobs
+# once the checkpoint ``optimum`` has written optimum.yaml. Its static, reduced and dnnm jobs
 # take that file as input (``kappa_source``), so Snakemake runs the checkpoint first and re-evaluates
 # the DAG; ``checkpoints.optimum.get()`` raises until then.
 OPTIMUM_GID = "optimum"

@@ -4,12 +4,14 @@ from ringdamper.studies.fidelity.dials import dial_cases
 
 FIDELITY = f"{RESULTS}/fidelity"
 FIDELITY_CASES = dial_cases(config) if "fidelity" in config else []
+MESH_BACKBONE_FACTORS = config.get("fidelity", {}).get("mesh_backbone", {}).get("factors", [])
 
 
 rule fidelity:
     input:
         f"{FIDELITY}/dials.csv",
         f"{FIDELITY}/mesh.csv",
+        f"{FIDELITY}/mesh_backbone.csv",
         f"{FIDELITY}/surrogate.csv",
         f"{FIDELITY}/forced.csv",
         f"{FIDELITY}/summary.yaml",
@@ -21,6 +23,10 @@ rule fidelity_case:
         resonance=f"{RESULTS}/modal/resonance.yaml",
     output:
         f"{FIDELITY}/cases/{{ring}}/{{dial}}/{{value}}.nc",
+    threads: 1
+    resources:
+        mem_mb=scaled(1600),
+        runtime=40,
     log:
         f"{RESULTS}/logs/fidelity/{{ring}}_{{dial}}_{{value}}.log",
     benchmark:
@@ -37,6 +43,10 @@ rule fidelity_mesh_level:
     wildcard_constraints:
         factor=r"\d+",
         order=r"\d+",
+    threads: 1
+    resources:
+        mem_mb=mesh_level_mem_mb,
+        runtime=25,
     log:
         f"{RESULTS}/logs/fidelity/mesh_{{factor}}_{{order}}.log",
     benchmark:
@@ -45,6 +55,44 @@ rule fidelity_mesh_level:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/fidelity_mesh_level.py"
+
+
+rule fidelity_mesh_backbone_case:
+    input:
+        resonance=f"{RESULTS}/modal/resonance.yaml",
+    output:
+        f"{FIDELITY}/mesh_backbone/{{factor}}.nc",
+    wildcard_constraints:
+        factor=r"\d+",
+    threads: 1
+    resources:
+        mem_mb=mesh_backbone_mem_mb,
+        runtime=60,
+    log:
+        f"{RESULTS}/logs/fidelity/mesh_backbone_{{factor}}.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/fidelity/mesh_backbone_{{factor}}.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/fidelity_mesh_backbone_case.py"
+
+
+rule fidelity_mesh_backbone:
+    input:
+        [f"{FIDELITY}/mesh_backbone/{factor}.nc" for factor in MESH_BACKBONE_FACTORS],
+    output:
+        f"{FIDELITY}/mesh_backbone.csv",
+    params:
+        factors=MESH_BACKBONE_FACTORS,
+    log:
+        f"{RESULTS}/logs/fidelity/mesh_backbone.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/fidelity/mesh_backbone.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/fidelity_mesh_backbone.py"
 
 
 rule fidelity_dials:
@@ -87,6 +135,10 @@ rule fidelity_surrogate:
         f"{FIDELITY}/surrogate.csv",
     params:
         default_gid=DEFAULT_GID,
+    threads: 1
+    resources:
+        mem_mb=scaled(1000),
+        runtime=40,
     log:
         f"{RESULTS}/logs/fidelity/surrogate.log",
     benchmark:

@@ -1,6 +1,8 @@
 # Where the methods fail (docs/method_limits.md): `snakemake method_limits` -> results/fidelity/limits/.
 # Not part of the default campaign. The E-EBM, harmonic-truncation and stability studies run on small
 # analytic systems; the Kriging coverage study refits the surrogates of the campaign dataset.
+# Resources (common.smk's convention) from one run of each on the shared 2-core machine: the largest,
+# Kriging coverage, 271 s and 309 MB (E-EBM 176 s and 173 MB, harmonics 13 s, stability 11 s).
 LIMITS = f"{RESULTS}/fidelity/limits"
 LIMIT_STUDIES = ("eebm_validity", "harmonics", "stability", "kriging_coverage")
 
@@ -21,6 +23,10 @@ rule limits_study:
         study="|".join(LIMIT_STUDIES),
     params:
         sizes=[20, 40, 60, 100],
+    threads: 1
+    resources:
+        mem_mb=scaled(700),
+        runtime=45,
     log:
         f"{RESULTS}/logs/fidelity/limits_{{study}}.log",
     benchmark:

@@ -1,5 +1,9 @@
 # The studies that fixed the model's choices (ringdamper.studies): `make studies` -> results/studies/.
-# Settings: the `studies` section of the configuration.
+# Settings: the `studies` section of the configuration. Resources as for the campaign's rules
+# (common.smk: mem_mb about twice the peak RSS, runtime ten times the wall time, at least 5 min), from
+# the benchmarks of one `make studies` run on the shared 2-core machine (results/benchmarks/studies/;
+# contact_calibration: its slowest stage, coarse, 26 min on 2 threads, and its largest peak, 0.97 GB in
+# harmonics_B; the figure and table rules read small files, as the campaign's figure rules: <= 0.3 GB).
 STUDIES = f"{RESULTS}/studies"
 
 
@@ -20,6 +24,10 @@ rule studies:
 rule hub_calibration:
     output:
         f"{STUDIES}/hub_calibration.yaml",
+    threads: 1
+    resources:
+        mem_mb=scaled(700),
+        runtime=5,
     log:
         f"{RESULTS}/logs/studies/hub_calibration.log",
     benchmark:
@@ -33,6 +41,10 @@ rule hub_calibration:
 rule mesh_convergence:
     output:
         f"{STUDIES}/mesh_convergence.csv",
+    threads: 1
+    resources:
+        mem_mb=scaled(3300),
+        runtime=14,
     log:
         f"{RESULTS}/logs/studies/mesh_convergence.log",
     benchmark:
@@ -47,6 +59,10 @@ rule reduction_convergence:
     output:
         csv=f"{STUDIES}/reduction_convergence.csv",
         table=f"{STUDIES}/reduction_convergence.md",
+    threads: 1
+    resources:
+        mem_mb=scaled(1000),
+        runtime=22,
     log:
         f"{RESULTS}/logs/studies/reduction_convergence.log",
     benchmark:
@@ -67,6 +83,9 @@ rule contact_calibration:
     wildcard_constraints:
         stage="coarse|refine|harmonics_A|harmonics_B",
     threads: 2
+    resources:
+        mem_mb=scaled(2000),
+        runtime=262,
     log:
         f"{RESULTS}/logs/studies/contact_calibration_{{stage}}.log",
     benchmark:
@@ -85,6 +104,10 @@ rule contact_calibration_figures:
                         category="Studies"),
         examples=report(f"{STUDIES}/contact_calibration/calibration_coarse_examples.png",
                         category="Studies"),
+    threads: 1
+    resources:
+        mem_mb=scaled(600),
+        runtime=5,
     log:
         f"{RESULTS}/logs/studies/contact_calibration_figures.log",
     benchmark:
@@ -101,6 +124,10 @@ rule contact_calibration_tables:
                stage=("coarse", "refine", "harmonics_A", "harmonics_B")),
     output:
         f"{STUDIES}/contact_calibration/tables.md",
+    threads: 1
+    resources:
+        mem_mb=scaled(600),
+        runtime=5,
     log:
         f"{RESULTS}/logs/studies/contact_calibration_tables.log",
     benchmark:
@@ -119,6 +146,10 @@ rule contact_state:
         maps_configured=f"{STUDIES}/contact_state/contact_state_maps_configured.png",
         maps_best=f"{STUDIES}/contact_state/contact_state_maps_best.png",
         closure=f"{STUDIES}/contact_state/contact_state_free_closure.png",
+    threads: 1
+    resources:
+        mem_mb=scaled(800),
+        runtime=35,
     log:
         f"{RESULTS}/logs/studies/contact_state.log",
     benchmark:
@@ -136,6 +167,10 @@ rule contact_state_backbone:
     output:
         table=f"{STUDIES}/contact_state/contact_state_backbone.csv",
         figure=report(f"{STUDIES}/contact_state/contact_state_backbone.png", category="Studies"),
+    threads: 1
+    resources:
+        mem_mb=scaled(700),
+        runtime=6,
     log:
         f"{RESULTS}/logs/studies/contact_state_backbone.log",
     benchmark:
@@ -157,8 +192,8 @@ rule last_point:
         figure=report(f"{STUDIES}/last_point/last_point_separation.png", category="Studies"),
     threads: 1
     resources:
-        mem_mb=scaled(1500),
-        runtime=15,
+        mem_mb=scaled(1000),
+        runtime=16,
     log:
         f"{RESULTS}/logs/studies/last_point.log",
     benchmark:

@@ -33,16 +33,20 @@ def case_rows(config: dict, cases: dict) -> list[dict]:
                  for lb in labels}
             ref = q[labels[-1]]
             for v, lb in zip(spec["values"], labels):
-                ds = cases[case_key(config, ring, dial, lb)]
-                err = relative_errors(q[lb], ref)
                 rows.append({"ring": ring, "dial": dial, "key": spec["key"], "value": v,
                              "is_default": lb == value_label(default_value(config, dial)),
                              "is_reference": lb == labels[-1],
-                             **{k: float(ds.attrs[k]) for k in COST_KEYS},
-                             "n_failed": int(np.sum(~np.isin(ds.status.values, (0, 3)))),
-                             **q[lb], **{f"error_{k}": e for k, e in err.items()},
-                             "error_max": max(err.values())})
+                             **case_summary(cases[case_key(config, ring, dial, lb)], q[lb], ref)})
     return rows
+
+
+def case_summary(ds: xr.Dataset, quantities: dict, reference: dict) -> dict:
+    """Cost (:data:`COST_KEYS`), failed points, user ``quantities`` of the case ``ds`` and their
+    relative errors against ``reference`` (``error_<quantity>``, ``error_max`` the largest)."""
+    err = relative_errors(quantities, reference)
+    return {**{k: float(ds.attrs[k]) for k in COST_KEYS},
+            "n_failed": int(np.sum(~np.isin(ds.status.values, (0, 3)))),
+            **quantities, **{f"error_{k}": e for k, e in err.items()}, "error_max": max(err.values())}
 
 
 def choose(rows: list[dict], tolerance: float, current: dict, noise: float = 0.1) -> dict:

@@ -66,6 +66,7 @@ CONFIG_SECTIONS = {
     "optimum": _SURROGATE + ("exploration",),
     "sobol": _SURROGATE + ("sensitivity",),
     "last_point": _DNNM + ("studies",),
+    "study_reduced": _MODEL + ("reduction", "dnnm", "studies"),
 }
 
 

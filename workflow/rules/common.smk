@@ -99,3 +99,11 @@ def frf_curves(gid):
     """Forced-response curves of geometry ``gid``, one per forcing level (1, 2, ...)."""
     levels = range(1, len(config["frf"]["target_amplitudes"]) + 1)
     return [f"{RESULTS}/frf/{gid}/gamma_{level}.nc" for level in levels]
+
+
+def study_harmonics(config):
+    """Harmonics the studies' default-ring reduced model needs: the contact calibration's and the
+    last-point study's largest H (at least the campaign's)."""
+    studies = config.get("studies", {})
+    return max([config["dnnm"]["n_harmonics"], *studies.get("contact_calibration", {}).get("harmonics", []),
+                studies.get("last_point", {}).get("n_harmonics", 0)])

@@ -5,6 +5,7 @@
 # contact_calibration: its slowest stage, coarse, 26 min on 2 threads, and its largest peak, 0.97 GB in
 # harmonics_B; the figure and table rules read small files, as the campaign's figure rules: <= 0.3 GB).
 STUDIES = f"{RESULTS}/studies"
+STUDY_REDUCED = f"{STUDIES}/default_reduced.nc"
 
 
 rule studies:
@@ -19,6 +20,25 @@ rule studies:
         f"{STUDIES}/contact_state/contact_state_designs.csv",
         f"{STUDIES}/contact_state/contact_state_backbone.csv",
         f"{STUDIES}/last_point/last_point_separation.png",
+
+
+rule study_reduced:
+    output:
+        STUDY_REDUCED,
+    params:
+        harmonics=study_harmonics(config),
+    threads: 1
+    resources:
+        mem_mb=scaled(1000),
+        runtime=5,
+    log:
+        f"{RESULTS}/logs/studies/study_reduced.log",
+    benchmark:
+        f"{RESULTS}/benchmarks/studies/study_reduced.tsv"
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/study_reduced.py"
 
 
 rule hub_calibration:
@@ -75,7 +95,7 @@ rule reduction_convergence:
 
 rule contact_calibration:
     input:
-        reduced=f"{RESULTS}/geometry/{DEFAULT_GID}/reduced.nc",
+        reduced=STUDY_REDUCED,
         resonance=f"{RESULTS}/modal/resonance.yaml",
     output:
         table=f"{STUDIES}/contact_calibration/{{stage}}.csv",
@@ -183,7 +203,7 @@ rule contact_state_backbone:
 
 rule last_point:
     input:
-        reduced=f"{RESULTS}/geometry/{DEFAULT_GID}/reduced.nc",
+        reduced=STUDY_REDUCED,
         static=f"{RESULTS}/geometry/{DEFAULT_GID}/static.nc",
         resonance=f"{RESULTS}/modal/resonance.yaml",
     output:

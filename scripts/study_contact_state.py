@@ -1,13 +1,15 @@
 """Rule script: the contact-state search (studies.contact_state) -> its tables and figures:
 the search grid (one row per design and ring, one per design), the seven rings' contact maps with
-the configured model and with the best design, and the default ring's free closure on each arm
-thickness (configured length) and each arm length (configured thickness)."""
+the configured model and with the best design, and the default ring's free closure on each groove
+support of the grid (figure, and its mean, axial spread and sector-periodic part in a table)."""
+import itertools
+
 import numpy as np
 
 from ringdamper.io import log_to, write_csv
 from ringdamper.plots.static import plot_contact_maps, plot_free_closure, plot_variety_search
-from ringdamper.studies.contact_state import (best_design, design_config, design_states, free_closure, search,
-                                              support_of)
+from ringdamper.studies.contact_state import (best_design, closure_summary, design_config, design_states,
+                                              free_closure, search, support_of)
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log_to(sm.log[0])
@@ -21,9 +23,14 @@ plot_variety_search(design_rows, ring_rows, configured, sm.output.search)
 plot_contact_maps(design_states(config, configured), sm.output.maps_configured)
 plot_contact_maps(design_states(config, best_design(design_rows, config)), sm.output.maps_best)
 grid = config["studies"]["contact_state"]
-supports = ([{"arm_thickness": t, "arm_length": configured["arm_length"]} for t in grid["arm_thickness"]]
-            + [{"arm_thickness": configured["arm_thickness"], "arm_length": length} for length in grid["arm_length"]])
+half_angle = np.pi / config["geometry"]["n_sectors"]
+supports = [{"arm_thickness": t, "arm_length": length}
+            for t, length in itertools.product(grid["arm_thickness"], grid["arm_length"])]
+supports += [support_of(config)] * (support_of(config) not in supports)   # the configured one is charted
 closures = {f"arm {1e3 * s['arm_thickness']:g} x {1e3 * s['arm_length']:g} mm":
-            free_closure(design_config(config, s), grid["free_clearance"]) for s in supports}
-plot_free_closure(closures, f"arm {1e3 * configured['arm_thickness']:g} x {1e3 * configured['arm_length']:g} mm",
-                  np.pi / config["geometry"]["n_sectors"], sm.output.closure)
+            (s, free_closure(design_config(config, s), grid["free_clearance"])) for s in supports}
+write_csv([{**s, **closure_summary(state, half_angle)} for s, (state, _) in closures.values()],
+          sm.output.closure_table)
+plot_free_closure({label: c for label, (_, c) in closures.items()},
+                  f"arm {1e3 * configured['arm_thickness']:g} x {1e3 * configured['arm_length']:g} mm",
+                  half_angle, sm.output.closure)

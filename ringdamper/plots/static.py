@@ -6,6 +6,8 @@ import itertools
 import matplotlib.pyplot as plt
 import numpy as np
 
+from ringdamper.studies.contact_state import station_means
+
 
 def _surface_coords(ds):
     """Circumferential arc position (mm, from the sector centre) and axial position (mm)."""
@@ -108,14 +110,6 @@ def plot_variety_search(design_rows: list, ring_rows: list, configured: dict, pa
     plt.close(fig)
 
 
-def _station_means(static, half_angle: float):
-    """(|theta| / theta_h of each theta station, mean closure d_n (um) of its pairs)."""
-    s = np.round(np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle, 9)
-    closure = 1e6 * (static.initial_gap.values - static.gap.values)
-    stations, station = np.unique(s, return_inverse=True)
-    return stations, np.bincount(station, closure) / np.bincount(station)
-
-
 def plot_free_closure(states: dict, configured: str, half_angle: float, path) -> None:
     """Closure d_n = initial gap - gap (um) of all-open static states (label -> (static dataset,
     underside imprint)) against the angle from the sector centre: every pair of the ``configured``
@@ -135,16 +129,17 @@ def plot_free_closure(states: dict, configured: str, half_angle: float, path) ->
     ax.set_ylabel("closure d_n without contact (um)")
     ax.set_title(f"{configured}: every pair (spread {np.ptp(closure):.2f} um)", fontsize=8)
     for label, (ds, imprint) in states.items():
-        stations, mean = _station_means(ds, half_angle)
-        bx.plot(stations, mean - mean[0], marker="o", ms=3,
-                label=f"{label} (spread {np.ptp(mean):.3f} um)")
+        stations, mean = station_means(ds, np.abs(np.arctan2(ds.y.values, ds.x.values)) / half_angle)
+        bx.plot(stations, 1e6 * (mean - mean[0]), marker="o", ms=3,
+                label=f"{label} (spread {1e6 * np.ptp(mean):.3f} um)")
         cx.plot(1e3 * imprint.z.values, 1e6 * (imprint.boundary.values - imprint.centre.values),
                 marker="o", ms=3, label=label)
     bx.set_ylabel("station mean closure - centre station (um)")
     bx.set_title("circumferential variation (what the default ring can feel)", fontsize=8)
     for a in (ax, bx):
         a.set_xlabel("|theta| / theta_h (0: under the blade, 1: sector boundary)")
-    cx.axvspan(1e3 * static.z.values.min(), 1e3 * static.z.values.max(), color="0.85", label="ring band")
+    cx.axvspan(1e3 * static.z.values.min(), 1e3 * static.z.values.max(), color="0.85",
+               label=f"ring band, {configured}")
     cx.set_xlabel("z (mm): rim, then the arm behind it")
     cx.set_ylabel("u_r(boundary) - u_r(under the blade) (um)")
     cx.set_title("support underside at the contact radius: sector-periodic part", fontsize=8)

@@ -16,7 +16,7 @@ from ringdamper.fem.prestress import rpm_to_rad_s
 from ringdamper.geometry.sector import build_sector
 from ringdamper.static.stage import solve_static, static_dataset
 from ringdamper.studies.contact_state import (CENTRE, REFERENCE_RINGS, Variety, best_design, contact_variety,
-                                              design_config, score, support_of)
+                                              closure_summary, design_config, score, support_of)
 
 A = 5.0e-3  # m, slope of the groove profile per unit |s|
 
@@ -127,3 +127,22 @@ def test_design_config_moves_the_ring_with_the_arm(campaign_config):
     validate_config(cfg)
     assert support_of(cfg) == {"arm_thickness": 0.009, "arm_length": 0.012}
     assert design_config(campaign_config, {}) == campaign_config
+
+
+def test_closure_summary_separates_the_taper_from_the_sector_periodic_part():
+    """An all-open state with closure d_n = 40 µm + 2 µm (z - z0) / (z1 - z0) + 0.07 µm |s| on a grid
+    of 7 angles x 5 axial stations: mean 41.035 µm, axial spread 2 µm, periodic part +0.07 µm."""
+    import xarray as xr
+
+    half = np.pi / 30
+    s, z = np.meshgrid(np.linspace(-1, 1, 7), np.linspace(0.03, 0.04, 5))
+    s, z = s.ravel(), z.ravel()
+    closure = 40e-6 + 2e-6 * (z - 0.03) / 0.01 + 0.07e-6 * np.abs(s)
+    radius = 0.32
+    static = xr.Dataset({"x": ("pair", radius * np.cos(s * half)), "y": ("pair", radius * np.sin(s * half)),
+                         "z": ("pair", z), "initial_gap": ("pair", np.full(s.size, 1e-4)),
+                         "gap": ("pair", 1e-4 - closure)})
+    out = closure_summary(static, half)
+    assert out["mean_closure"] == pytest.approx(40e-6 + 1e-6 + 0.07e-6 * np.mean(np.abs(s)), rel=1e-12)
+    assert out["axial_spread"] == pytest.approx(2e-6, rel=1e-9)
+    assert out["periodic_part"] == pytest.approx(0.07e-6, rel=1e-9)

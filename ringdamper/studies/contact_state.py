@@ -291,7 +291,8 @@ def backbone_sweep(config: dict, reduced_path, target_hz: float) -> list[tuple[d
     alpha = config["studies"]["contact_calibration"]["amplitudes"]
     out = []
     for clearance in grid["backbone_clearance"]:
-        ring = DefaultRing(design_config(config, {"radial_clearance": clearance}), reduced_path, target_hz)
+        cfg = design_config(config, {"radial_clearance": clearance})
+        ring = DefaultRing(cfg, reduced_path, target_hz)
         for mu in grid["backbone_friction"]:
             contact = dict(cfg["contact"], friction_coefficient=float(mu))
             row, ds = run_trial(ring, contact, 1, alpha)

@@ -80,13 +80,7 @@ def _geometry_errors(config: dict) -> list[str]:
         errors.append(
             f"geometry.blade: root radius tip_radius - height = {root:.6g} must exceed "
             f"contact_radius + max(kappa1_offsets) = {disk['contact_radius'] + max(lo_k1):.6g}")
-    half_rim = disk["rim_axial_width"] / 2
-    lo = half_rim + ring["width"] / 2
-    hi = half_rim + disk["arm_length"] - ring["width"] / 2
-    if not lo < ring["axial_center"] < hi:
-        errors.append(
-            f"geometry.ring.axial_center = {ring['axial_center']} must lie in ({lo:.6g}, {hi:.6g}) "
-            "so that the ring sits under the rim's arm")
+    errors += _ring_under_arm(g, disk["arm_length"], ring["axial_center"], "geometry.ring.axial_center")
     if not disk["arm_thickness"] > max(lo_k1):
         errors.append(f"geometry.disk.arm_thickness = {disk['arm_thickness']} must exceed the deepest "
                       f"groove, max(kappa1_offsets) = {max(lo_k1)}")
@@ -104,6 +98,42 @@ def _geometry_errors(config: dict) -> list[str]:
                                                     g["shape"]["kappa3_offsets"][2])
     if thinnest <= 0:
         errors.append(f"geometry.shape: the ring would have a non-positive thickness ({thinnest:.3g} m)")
+    return errors
+
+
+def ring_axial_center(geometry: dict, arm_length: float) -> float:
+    """Axial centre (m) of the ring on an arm of length ``arm_length``: the ring moves with the arm's
+    centre, keeping the configured ring's offset from it (a centred ring stays centred)."""
+    disk = geometry["disk"]
+    return geometry["ring"]["axial_center"] + (arm_length - disk["arm_length"]) / 2
+
+
+def _ring_under_arm(geometry: dict, arm_length: float, center: float, field: str) -> list[str]:
+    """The ring's axial band must lie under the arm (rim face + arm_length), not under the rim."""
+    half_rim, width = geometry["disk"]["rim_axial_width"] / 2, geometry["ring"]["width"]
+    lo, hi = half_rim + width / 2, half_rim + arm_length - width / 2
+    if lo < center < hi:
+        return []
+    return [f"{field} = {center:.6g} must lie in ({lo:.6g}, {hi:.6g}) so that the ring sits under the "
+            f"rim's arm (arm_length = {arm_length:.6g})"]
+
+
+def _contact_state_errors(config: dict) -> list[str]:
+    """The groove-support variants of ``studies.contact_state`` must be valid geometries: each arm
+    thickness between the deepest groove and the blade root (the rim lies above the arm), each arm
+    length long enough to carry the ring moved with it (:func:`ring_axial_center`)."""
+    grid = config.get("studies", {}).get("contact_state")
+    if grid is None:
+        return []
+    g = config["geometry"]
+    deepest = max(g["shape"]["kappa1_offsets"])
+    rim_depth = g["blade"]["tip_radius"] - g["blade"]["height"] - g["disk"]["contact_radius"]
+    errors = [f"studies.contact_state.arm_thickness[{i}] = {t} must lie in ({deepest:.6g}, {rim_depth:.6g}): "
+              "above the deepest groove (max kappa1_offsets), below the blade root"
+              for i, t in enumerate(grid["arm_thickness"]) if not deepest < t < rim_depth]
+    for i, length in enumerate(grid["arm_length"]):
+        errors += _ring_under_arm(g, length, ring_axial_center(g, length),
+                                  f"studies.contact_state.arm_length[{i}] = {length}: ring axial_center")
     return errors
 
 
@@ -156,7 +186,8 @@ def validate_config(config: dict[str, Any]) -> dict[str, Any]:
     """Validate ``config`` in place semantics; raise one :class:`ConfigError` listing every problem."""
     errors = _schema_errors(config)
     if not errors:
-        errors = _geometry_errors(config) + _solver_errors(config) + _analytics_errors(config)
+        errors = (_geometry_errors(config) + _solver_errors(config) + _analytics_errors(config)
+                  + _contact_state_errors(config))
     if errors:
         raise ConfigError("invalid configuration:\n  - " + "\n  - ".join(errors))
     return config

@@ -1,8 +1,12 @@
 """Contact state maps over the ring's upper surface (paper Figs. 6 and 11, middle and right columns)."""
 from __future__ import annotations
 
+import itertools
+
 import matplotlib.pyplot as plt
 import numpy as np
+
+from ringdamper.studies.contact_state import station_means
 
 
 def _surface_coords(ds):
@@ -58,21 +62,32 @@ def _lines(ax, rows, x, y, key, label_of, scale=1.0, **style):
                 color=f"C{k}", label=label_of(value), **style)
 
 
-def plot_variety_search(design_rows: list, ring_rows: list, kn: float, arm: float, path) -> None:
+def plot_variety_search(design_rows: list, ring_rows: list, configured: dict, path) -> None:
     """The contact-state search: rows of the paper's table reproduced against the radial clearance
-    (one line per kn / area, solid for arm thickness ``arm``, dashed and dotted for the others), and
-    the variety metric of each ring against the clearance at ``kn`` and ``arm``."""
+    (the best kn / area of each clearance; one line per groove support, colour by arm length, line
+    style by arm thickness, thick for the ``configured`` support), and the variety metric of each
+    ring against the clearance at the ``configured`` kn and support (``configured``: the
+    ``normal_stiffness_per_area``, ``arm_thickness`` and ``arm_length`` of the model)."""
     fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
     ax = axes[0, 0]
-    styles = iter(["-", "--", ":", "-."])
-    for a in sorted(dict.fromkeys(r["arm_thickness"] for r in design_rows), key=lambda a: a != arm):
-        _lines(ax, [r for r in design_rows if r["arm_thickness"] == a], "radial_clearance",
-               "rows_reproduced", "normal_stiffness_per_area",
-               lambda v, a=a: f"kn {v:.0e} N/m3, arm {1e3 * a:g} mm", ls=next(styles))
-    ax.set_ylabel("rows of the paper's table reproduced (of 7)")
+    thicknesses = sorted(dict.fromkeys(r["arm_thickness"] for r in design_rows))
+    lengths = sorted(dict.fromkeys(r["arm_length"] for r in design_rows))
+    support = ("arm_thickness", "arm_length")
+    for (i, t), (j, length) in itertools.product(enumerate(thicknesses), enumerate(lengths)):
+        rows = [r for r in design_rows if (r["arm_thickness"], r["arm_length"]) == (t, length)]
+        clearances = sorted(dict.fromkeys(r["radial_clearance"] for r in rows))
+        best = [max(r["rows_reproduced"] for r in rows if r["radial_clearance"] == c) for c in clearances]
+        ax.plot(1e6 * np.array(clearances), np.array(best) + 0.04 * (i - 1), marker="o", ms=3,
+                color=f"C{j}", ls=["-", "--", ":", "-."][i % 4],
+                lw=2.5 if (t, length) == tuple(configured[k] for k in support) else 1.0,
+                label=f"arm {1e3 * t:g} x {1e3 * length:g} mm")
+    ax.set_ylabel("paper's rows reproduced (of 7), best kn")
     ax.set_ylim(-0.2, 7.2)
     ax.legend(fontsize=6, ncol=2)
-    at = [r for r in ring_rows if r["normal_stiffness_per_area"] == kn and r["arm_thickness"] == arm]
+    kn = configured["normal_stiffness_per_area"]
+    at = [r for r in ring_rows if r["normal_stiffness_per_area"] == kn
+          and all(r[k] == configured[k] for k in support)]
+    arm = f"arm {1e3 * configured['arm_thickness']:g} x {1e3 * configured['arm_length']:g} mm"
     panels = [("open_fraction", 1.0, "fraction of pairs open"),
               ("concentration", 1.0, "peak / mean pressure"),
               ("n0_position", 1.0, "N0 centre of mass |theta| / theta_h"),
@@ -82,22 +97,17 @@ def plot_variety_search(design_rows: list, ring_rows: list, kn: float, arm: floa
         _lines(ax, at, "radial_clearance", y, "ring", str, scale)
         ax.set_ylabel(label)
     axes[0, 2].set_yscale("log")
-    axes[0, 1].legend(fontsize=7, title=f"kn {kn:.0e} N/m3, arm {1e3 * arm:g} mm", title_fontsize=7)
+    axes[0, 1].legend(fontsize=7, title=f"kn {kn:.0e} N/m3, {arm}", title_fontsize=7)
+    lo, hi = axes[0, 0].get_xlim()
     for ax in axes.ravel():
-        ax.set_xlim(axes[0, 0].get_xlim())
-        ax.set_xlabel("radial clearance at rest (um)")
+        ax.set_xlim(lo, hi)
+        if lo < 0:
+            ax.axvspan(lo, 0.0, color="0.92", zorder=0)
+        ax.set_xlabel("radial clearance at rest (um; shaded: interference)")
         ax.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
-
-
-def _station_means(static, half_angle: float):
-    """(|theta| / theta_h of each theta station, mean closure d_n (um) of its pairs)."""
-    s = np.round(np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle, 9)
-    closure = 1e6 * (static.initial_gap.values - static.gap.values)
-    stations, station = np.unique(s, return_inverse=True)
-    return stations, np.bincount(station, closure) / np.bincount(station)
 
 
 def plot_free_closure(states: dict, configured: str, half_angle: float, path) -> None:
@@ -119,16 +129,17 @@ def plot_free_closure(states: dict, configured: str, half_angle: float, path) ->
     ax.set_ylabel("closure d_n without contact (um)")
     ax.set_title(f"{configured}: every pair (spread {np.ptp(closure):.2f} um)", fontsize=8)
     for label, (ds, imprint) in states.items():
-        stations, mean = _station_means(ds, half_angle)
-        bx.plot(stations, mean - mean[0], marker="o", ms=3,
-                label=f"{label} (spread {np.ptp(mean):.3f} um)")
+        stations, mean = station_means(ds, np.abs(np.arctan2(ds.y.values, ds.x.values)) / half_angle)
+        bx.plot(stations, 1e6 * (mean - mean[0]), marker="o", ms=3,
+                label=f"{label} (spread {1e6 * np.ptp(mean):.3f} um)")
         cx.plot(1e3 * imprint.z.values, 1e6 * (imprint.boundary.values - imprint.centre.values),
                 marker="o", ms=3, label=label)
     bx.set_ylabel("station mean closure - centre station (um)")
     bx.set_title("circumferential variation (what the default ring can feel)", fontsize=8)
     for a in (ax, bx):
         a.set_xlabel("|theta| / theta_h (0: under the blade, 1: sector boundary)")
-    cx.axvspan(1e3 * static.z.values.min(), 1e3 * static.z.values.max(), color="0.85", label="ring band")
+    cx.axvspan(1e3 * static.z.values.min(), 1e3 * static.z.values.max(), color="0.85",
+               label=f"ring band, {configured}")
     cx.set_xlabel("z (mm): rim, then the arm behind it")
     cx.set_ylabel("u_r(boundary) - u_r(under the blade) (um)")
     cx.set_title("support underside at the contact radius: sector-periodic part", fontsize=8)

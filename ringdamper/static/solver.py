@@ -173,8 +173,6 @@ def _physics_problem(K, f, G, g0, kn, kt):
         return f"normal stiffness kn must be finite and > 0 (pairs {_first(~(kn > 0))})"
     if np.any(kt < 0):
         return f"tangential stiffness kt must be >= 0 (pairs {_first(kt < 0)})"
-    if np.any(g0 < 0):
-        return f"initial gap g0 must be >= 0 (pairs {_first(g0 < 0)}): interpenetrating mesh?"
     scale = abs(K).max() if K.nnz else 0.0
     if scale > 0 and abs(K - K.T).max() > 1e-10 * scale:
         return "K is not symmetric"
@@ -455,7 +453,9 @@ def solve_static_contact(K, f, G, g0, kn, kt, *, method="penalty", tol=1e-10,
         restrained by the contact springs/constraints).
     f : (n,) external load.
     G : scipy.sparse (3m, n), rows 3p, 3p+1, 3p+2 give (d_n, d_t1, d_t2) of pair p, d_n > 0 closing.
-    g0 : (m,) initial gaps ≥ 0.
+    g0 : (m,) initial gaps; negative values are an initial interference (a ring pressed into its
+        groove at rest): the penalty law (2) then loads the pair before any motion, the exact law
+        (3) pushes the bodies apart until g = g0 − d_n ≥ 0.
     kn : scalar or (m,) normal penalty stiffness (N/m), > 0. Required for ``"penalty"``; for
         ``"lagrange"`` it is only the scale ``s`` of (4) and of the NCP, which does not change
         the solution (None: s = 100·n_pᵀ K n_p, a hundred times the local stiffness).

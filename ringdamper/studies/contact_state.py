@@ -18,8 +18,10 @@ sector half angle (s = 0 under the blade, |s| = 1 on the sector boundaries):
   1 boundary); and |s| of the peak pressure.
 
 The search (:func:`search`) varies the free parameters that move the static state: the ring's
-nominal radial clearance at rest (``geometry.ring.radial_clearance``), the normal contact stiffness
-per area (kt kept at the configured kt/kn) and the rim arm's radial thickness (the groove support).
+nominal radial clearance at rest (``geometry.ring.radial_clearance``; negative: an interference fit,
+the ring pressed into the groove at rest), the normal contact stiffness per area (kt kept at the
+configured kt/kn) and the groove support, the rim arm's radial thickness and axial length (the ring
+moves with the arm's centre, :func:`ringdamper.config.ring_axial_center`).
 μ and kt do not move the static state; they and the clearance move the default ring's backbone,
 charted by :func:`backbone_sweep` with ``studies.contact_calibration``'s metrics. :func:`free_closure`
 gives the closure of every pair when the clearance exceeds the ring's growth (no pair touches): how
@@ -36,6 +38,7 @@ import numpy as np
 import xarray as xr
 
 from ringdamper.campaign import sampling
+from ringdamper.config import ring_axial_center
 
 # the paper's seven rings of Figs. 6, 11, 19 (the campaign's reference rings but kappa3 = +1)
 REFERENCE_RINGS = {label: k for label, k in sampling.REFERENCE_RINGS.items() if label != "kappa3=+1"}
@@ -118,21 +121,35 @@ def score(v: dict[str, Variety]) -> dict[str, bool]:
     }
 
 
-def design_config(config: dict, clearance: float, kn_per_area: float, arm_thickness: float) -> dict:
-    """``config`` with a design: radial clearance (m), kn per area (N/m³, kt at the same kt/kn) and
-    arm thickness (m)."""
+SUPPORT = ("arm_thickness", "arm_length")   # the groove-support dials (geometry.disk)
+
+
+def design_config(config: dict, design: dict) -> dict:
+    """``config`` with the entries of ``design`` that it holds: ``radial_clearance`` (m),
+    ``normal_stiffness_per_area`` (N/m³, kt at the same kt/kn), ``arm_thickness`` and ``arm_length``
+    (m; the ring moves with the arm's centre)."""
     cfg = copy.deepcopy(config)
-    c = cfg["contact"]
-    ratio = c["tangential_stiffness_per_area"] / c["normal_stiffness_per_area"]
-    c.update(normal_stiffness_per_area=float(kn_per_area), tangential_stiffness_per_area=float(ratio * kn_per_area))
-    cfg["geometry"]["ring"]["radial_clearance"] = float(clearance)
-    cfg["geometry"]["disk"]["arm_thickness"] = float(arm_thickness)
+    g = cfg["geometry"]
+    if "normal_stiffness_per_area" in design:
+        c, kn = cfg["contact"], float(design["normal_stiffness_per_area"])
+        ratio = c["tangential_stiffness_per_area"] / c["normal_stiffness_per_area"]
+        c.update(normal_stiffness_per_area=kn, tangential_stiffness_per_area=ratio * kn)
+    if "radial_clearance" in design:
+        g["ring"]["radial_clearance"] = float(design["radial_clearance"])
+    if "arm_length" in design:
+        g["ring"]["axial_center"] = ring_axial_center(g, float(design["arm_length"]))
+    g["disk"].update({k: float(design[k]) for k in SUPPORT if k in design})
     return cfg
+
+
+def support_of(config: dict) -> dict:
+    """The groove-support dials of ``config`` (:data:`SUPPORT`)."""
+    return {k: float(config["geometry"]["disk"][k]) for k in SUPPORT}
 
 
 def _static_states(config: dict, kappa, designs) -> list[xr.Dataset]:
     """``static.nc`` datasets of ring ``kappa`` for each (clearance, kn per area) of ``designs``,
-    meshing and assembling the sector once (the arm thickness is ``config``'s)."""
+    meshing and assembling the sector once (the groove support is ``config``'s)."""
     from ringdamper.fem.model import build_model
     from ringdamper.geometry.sector import build_sector
     from ringdamper.static.stage import clearance_gaps, solve_problem, static_dataset, static_problem
@@ -142,8 +159,8 @@ def _static_states(config: dict, kappa, designs) -> list[xr.Dataset]:
     out, problems = [], {}
     for clearance, kn in designs:
         if kn not in problems:
-            problems[kn] = static_problem(model, design_config(config, 0.0, kn, config["geometry"]["disk"]
-                                                               ["arm_thickness"]), speed)
+            problems[kn] = static_problem(model, design_config(config, {"normal_stiffness_per_area": kn}),
+                                          speed)
         prob = copy.copy(problems[kn])
         prob.g0 = clearance_gaps(model, clearance)
         result = solve_problem(prob, config["static"])
@@ -160,21 +177,21 @@ def ring_states(config: dict, designs) -> dict[str, list[xr.Dataset]]:
 
 
 def search(config: dict) -> tuple[list[dict], list[dict]]:
-    """The grid of ``studies.contact_state`` (``radial_clearance``, ``normal_stiffness_per_area``,
-    ``arm_thickness``): (one row per design and ring: the :class:`Variety` and the row verdict;
-    one row per design: the number of the paper's rows reproduced)."""
+    """The full grid of ``studies.contact_state`` (``arm_thickness`` × ``arm_length`` ×
+    ``radial_clearance`` × ``normal_stiffness_per_area``): (one row per design and ring: the
+    :class:`Variety` and the row verdict; one row per design: the number of the paper's rows
+    reproduced). Each groove support is meshed once per ring; the contact designs re-solve it."""
     grid = config["studies"]["contact_state"]
     half_angle = np.pi / config["geometry"]["n_sectors"]
     designs = list(itertools.product(grid["radial_clearance"], grid["normal_stiffness_per_area"]))
     ring_rows, design_rows = [], []
-    for arm in grid["arm_thickness"]:
-        cfg = design_config(config, 0.0, config["contact"]["normal_stiffness_per_area"], arm)
-        states = ring_states(cfg, designs)
+    for thickness, length in itertools.product(grid["arm_thickness"], grid["arm_length"]):
+        support = {"arm_thickness": float(thickness), "arm_length": float(length)}
+        states = ring_states(design_config(config, support), designs)
         for j, (clearance, kn) in enumerate(designs):
             v = {label: contact_variety(states[label][j], half_angle) for label in REFERENCE_RINGS}
             ok = score(v)
-            key = {"arm_thickness": float(arm), "radial_clearance": float(clearance),
-                   "normal_stiffness_per_area": float(kn)}
+            key = {**support, "radial_clearance": float(clearance), "normal_stiffness_per_area": float(kn)}
             ring_rows += [{**key, "ring": label, **asdict(v[label]), "reproduced": ok[label]}
                           for label in REFERENCE_RINGS]
             design_rows.append({**key, "rows_reproduced": int(sum(ok.values())),
@@ -184,17 +201,18 @@ def search(config: dict) -> tuple[list[dict], list[dict]]:
 
 def best_design(design_rows: list[dict], config: dict) -> dict:
     """The design reproducing the most rows; among ties the cheapest change from ``config``: the
-    smallest clearance, then the configured arm, then kn nearest (in log) to the configured one."""
+    clearance nearest the configured one, then the configured arm (thickness, then length, each by
+    its relative change), then kn nearest (in log) to the configured one."""
     kn0 = config["contact"]["normal_stiffness_per_area"]
-    arm0 = config["geometry"]["disk"]["arm_thickness"]
-    return min(design_rows, key=lambda r: (-r["rows_reproduced"], r["radial_clearance"],
-                                           abs(r["arm_thickness"] - arm0),
+    c0, support0 = config["geometry"]["ring"]["radial_clearance"], support_of(config)
+    return min(design_rows, key=lambda r: (-r["rows_reproduced"], abs(r["radial_clearance"] - c0),
+                                           *(abs(r[k] / support0[k] - 1) for k in SUPPORT),
                                            abs(np.log(r["normal_stiffness_per_area"] / kn0))))
 
 
 def design_states(config: dict, design: dict) -> dict[str, xr.Dataset]:
     """Static states of the seven rings for one design row (label -> static.nc dataset)."""
-    cfg = design_config(config, 0.0, design["normal_stiffness_per_area"], design["arm_thickness"])
+    cfg = design_config(config, {k: design[k] for k in SUPPORT})
     states = ring_states(cfg, [(design["radial_clearance"], design["normal_stiffness_per_area"])])
     return {label: ds[0] for label, ds in states.items()}
 
@@ -207,8 +225,7 @@ def free_closure(config: dict, clearance: float) -> tuple[xr.Dataset, xr.Dataset
     from ringdamper.geometry.sector import build_sector
     from ringdamper.static.stage import solve_static, static_dataset
 
-    cfg = copy.deepcopy(config)
-    cfg["geometry"]["ring"]["radial_clearance"] = float(clearance)
+    cfg = design_config(config, {"radial_clearance": clearance})
     model = build_model(build_sector(cfg, REFERENCE_RINGS["default"]), cfg)
     result, prob = solve_static(model, cfg)
     if result.status != 0 or np.any(result.in_contact):
@@ -217,6 +234,27 @@ def free_closure(config: dict, clearance: float) -> tuple[xr.Dataset, xr.Dataset
     u = (prob.T @ result.u).reshape(-1, 3)
     return (static_dataset(model, result, prob, REFERENCE_RINGS["default"], cfg["operation"]["speed_rpm"]),
             underside_imprint(model, u, cfg["geometry"]["disk"]["contact_radius"]))
+
+
+def station_means(static: xr.Dataset, coordinate: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(distinct values of ``coordinate`` (per pair, rounded to 1e-9), mean closure d_n = initial gap
+    − gap (m) of the pairs at each)."""
+    closure = static.initial_gap.values - static.gap.values
+    stations, station = np.unique(np.round(coordinate, 9), return_inverse=True)
+    return stations, np.bincount(station, closure) / np.bincount(station)
+
+
+def closure_summary(static: xr.Dataset, half_angle: float) -> dict:
+    """Of an all-open (:func:`free_closure`) state: the mean closure (the clearance at which the ring
+    would just touch on average), the spread of the means of its axial stations (the arm's taper) and
+    its sector-periodic part, the mean of the boundary station minus that of the centre station
+    (> 0: the boundaries close more, so they carry N0 and the centre opens first). All in m."""
+    s = np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle
+    closure = static.initial_gap.values - static.gap.values
+    _, theta_means = station_means(static, s)
+    _, z_means = station_means(static, static.z.values)
+    return {"mean_closure": float(closure.mean()), "axial_spread": float(np.ptp(z_means)),
+            "periodic_part": float(theta_means[-1] - theta_means[0])}
 
 
 def underside_imprint(model, u: np.ndarray, radius: float) -> xr.Dataset:
@@ -253,8 +291,7 @@ def backbone_sweep(config: dict, reduced_path, target_hz: float) -> list[tuple[d
     alpha = config["studies"]["contact_calibration"]["amplitudes"]
     out = []
     for clearance in grid["backbone_clearance"]:
-        cfg = copy.deepcopy(config)
-        cfg["geometry"]["ring"]["radial_clearance"] = float(clearance)
+        cfg = design_config(config, {"radial_clearance": clearance})
         ring = DefaultRing(cfg, reduced_path, target_hz)
         for mu in grid["backbone_friction"]:
             contact = dict(cfg["contact"], friction_coefficient=float(mu))

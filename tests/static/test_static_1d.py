@@ -2,7 +2,10 @@
 
 Chain with springs k_j, node 0 clamped, loads f_i: the tip moves u_free = Σ_i f_i c_i freely
 (c_i = Σ_{j≤i} 1/k_j, tip flexibility c). Against a wall at gap g0 the tip force is
-N = max(u_free − g0, 0) / (c + 1/kn) (penalty) or max(u_free − g0, 0) / c (exact).
+N = max(u_free − g0, 0) / (c + 1/kn) (penalty) or max(u_free − g0, 0) / c (exact). A negative g0 = −δ
+is an interference of δ (the tip starts δ inside the wall): the same closed forms hold with
+u_free − g0 = u_free + δ, i.e. N = kn·(δ + d_n), the penalty spring loaded by the interference plus
+the closure d_n = u_free − c·N.
 """
 import numpy as np
 import pytest
@@ -27,7 +30,7 @@ def _oracle(g0, method):
 
 
 @pytest.mark.parametrize("method", ["penalty", "lagrange"])
-@pytest.mark.parametrize("gap_ratio", [0.0, 0.4, 0.999, 1.7])
+@pytest.mark.parametrize("gap_ratio", [-0.5, 0.0, 0.4, 0.999, 1.7])
 def test_chain_against_wall(method, gap_ratio):
     u_free = _oracle(0.0, method)[3]
     g0 = gap_ratio * u_free
@@ -40,6 +43,27 @@ def test_chain_against_wall(method, gap_ratio):
     assert r.penetration[0] == pytest.approx(pen, rel=RTOL, abs=RTOL * u_free)
     assert r.in_contact[0] == (N > 0)
     assert r.residual <= 1e-12
+
+
+@pytest.mark.parametrize("method", ["penalty", "lagrange"])
+def test_interference_alone_preloads_the_contact(method):
+    """No load, the tip δ = 2 µm inside the wall: N = δ / (c + 1/kn) (penalty: the contact spring and
+    the chain in series share the interference; exact law: N = δ / c, the chain pushed back by δ).
+    The chain is pushed back uniformly along its flexibilities, u_i = −c_i N."""
+    delta = 2.0e-6
+    c, c_tip = chain_flexibilities(K_SPRINGS)
+    system = wall_chain(K_SPRINGS, np.zeros(K_SPRINGS.size), -delta)
+    r = solve_static_contact(system.K, system.f, system.G, system.g0, KN, 0.0, method=method)
+    assert r.status == 0, r.reason
+    N = delta / (c_tip + (1.0 / KN if method == "penalty" else 0.0))
+    assert r.N0[0] == pytest.approx(N, rel=RTOL)
+    assert r.in_contact[0] and r.gap[0] == 0.0
+    d_n = r.relative_displacement[0, 0]
+    assert d_n == pytest.approx(-c_tip * N, rel=RTOL)
+    if method == "penalty":      # N0 = kn (interference + closure), the penetration N0 / kn
+        assert r.N0[0] == pytest.approx(KN * (delta + d_n), rel=RTOL)
+        assert r.penetration[0] == pytest.approx(N / KN, rel=RTOL)
+    np.testing.assert_allclose(r.u, -c * N, rtol=RTOL)
 
 
 @pytest.mark.parametrize("method", ["penalty", "lagrange"])

@@ -39,7 +39,7 @@ ABSURD = {  # name: (changes to the arguments, expected status, word expected in
     "kt < 0": (lambda s: dict(kt=-KT), 2, "kt"),
     "NaN in K": (_with_nan_in_K, 2, "K"),
     "inf in f": (lambda s: dict(f=np.where(np.arange(s.f.size) == 0, np.inf, s.f)), 2, "f"),
-    "negative gap": (lambda s: dict(g0=s.g0 - 1e-3), 2, "gap"),
+    "NaN in g0": (lambda s: dict(g0=np.where(np.arange(s.g0.size) == 0, np.nan, s.g0)), 2, "g0"),
     "K not symmetric": (_asymmetric, 2, "symmetric"),
     "free body, no contact at all": (lambda s: dict(G=s.G[:0], g0=s.g0[:0]), 3, "restrained"),
     "free body, no tangential spring": (lambda s: dict(kt=0.0), 3, "restrained"),

@@ -182,6 +182,39 @@ def test_kkt_is_exact_with_pairs_open(campaign_config, method):
     assert np.linalg.norm(residual) <= 1e-8 * np.linalg.norm(prob.f)
 
 
+@pytest.mark.parametrize("method", ["penalty", "lagrange"])
+def test_interference_fit_preloads_a_ring_like_a_thin_ring(config, method):
+    """The default ring pressed δ = 50 µm into a rigid groove, at rest (no centrifugal load), nu = 0:
+    a uniform pressure p closes every pair and compresses the ring by u = p R_o R_m / (E t) (thin
+    ring: hoop force p R_o per unit width, strain u / R_m; R_o the groove radius, R_m the ring's mean
+    radius, t its thickness). Penalty (k per area): p = k (δ − u), so p = δ / (R_o R_m / (E t) + 1/k);
+    exact law: u = δ, p = δ E t / (R_o R_m). To 1e-3 (the thin-ring closed form; 4e-5 is seen), and
+    pair by pair the penalty law N0 = kn (interference + closure) = kn (d_n − g0) to round-off."""
+    delta = 50e-6
+    config["static"]["method"] = method
+    config["material"]["poisson_ratio"] = 0.0
+    config["geometry"]["ring"]["radial_clearance"] = -delta
+    model = _model(config)
+    result, prob = solve_static(model, config, speed_rpm=0.0, rigid_blisk=True)
+    assert result.status == 0, result.reason
+    assert np.all(result.in_contact) and np.all(result.gap == 0.0)
+    assert prob.g0 == pytest.approx(-delta, rel=1e-12)
+    g = config["geometry"]
+    r_o, t = g["disk"]["contact_radius"], g["ring"]["thickness"]
+    compliance = r_o * (r_o - t / 2) / (config["material"]["young_modulus"] * t)
+    k = config["contact"]["normal_stiffness_per_area"]
+    p = delta / (compliance + (1.0 / k if method == "penalty" else 0.0))
+    pressure = result.N0 / model.pairs.area
+    assert np.sum(result.N0) / np.sum(model.pairs.area) == pytest.approx(p, rel=1e-3)
+    assert np.ptp(pressure) <= 1e-3 * p                               # axisymmetric: uniform
+    d_n = result.relative_displacement[:, 0]
+    if method == "penalty":
+        assert result.N0 == pytest.approx(prob.kn * (d_n - prob.g0), rel=1e-10)
+        assert result.penetration == pytest.approx(result.N0 / prob.kn, rel=1e-10)
+    else:
+        assert np.max(np.abs(d_n - prob.g0)) <= 1e-9 * delta
+
+
 def test_clearance_gap_lies_along_the_pair_normal(campaign_config):
     """g0 = c (n . e_r): c on the cylindrical default ring, less on the flanks of kappa1's bump."""
     from ringdamper.static.stage import clearance_gaps

@@ -15,7 +15,8 @@ from ringdamper.fem.model import build_model
 from ringdamper.fem.prestress import rpm_to_rad_s
 from ringdamper.geometry.sector import build_sector
 from ringdamper.static.stage import solve_static, static_dataset
-from ringdamper.studies.contact_state import CENTRE, REFERENCE_RINGS, Variety, best_design, contact_variety, score
+from ringdamper.studies.contact_state import (CENTRE, REFERENCE_RINGS, Variety, best_design, contact_variety,
+                                              closure_summary, design_config, score, support_of)
 
 A = 5.0e-3  # m, slope of the groove profile per unit |s|
 
@@ -97,7 +98,51 @@ def test_score_reads_the_paper_table_row_by_row():
 
 
 def test_best_design_is_the_cheapest_of_the_most_reproducing(campaign_config):
-    rows = [{"arm_thickness": a, "radial_clearance": c, "normal_stiffness_per_area": k, "rows_reproduced": n}
-            for a, c, k, n in [(0.006, 3e-5, 2e11, 2), (0.009, 2e-5, 1e12, 2), (0.006, 2e-5, 1e12, 2),
-                               (0.006, 0.0, 7e10, 1)]]
-    assert best_design(rows, campaign_config) is rows[2]
+    """Most rows first; then the clearance nearest the configured 0 (an interference of 10 µm beats a
+    clearance of 20 µm), the configured arm, kn nearest in log."""
+    rows = [{"arm_thickness": a, "arm_length": length, "radial_clearance": c, "normal_stiffness_per_area": k,
+             "rows_reproduced": n}
+            for a, length, c, k, n in [(0.006, 0.02, 3e-5, 2e11, 2), (0.009, 0.02, 2e-5, 1e12, 2),
+                                       (0.006, 0.02, 2e-5, 1e12, 2), (0.006, 0.01, -1e-5, 1e12, 2),
+                                       (0.006, 0.02, -1e-5, 1e12, 2), (0.006, 0.02, 0.0, 7e10, 1)]]
+    assert best_design(rows, campaign_config) is rows[4]
+    assert best_design(rows[:4], campaign_config) is rows[3]
+    assert best_design(rows[:3], campaign_config) is rows[2]
+
+
+def test_design_config_moves_the_ring_with_the_arm(campaign_config):
+    """A design changes only its own entries; kt keeps the configured kt/kn; the centred ring stays
+    centred under an arm of another length (and the design is a valid configuration)."""
+    from ringdamper.config import validate_config
+
+    cfg = design_config(campaign_config, {"radial_clearance": -3e-5, "normal_stiffness_per_area": 2e11,
+                                          "arm_thickness": 0.009, "arm_length": 0.012})
+    g, c, c0 = cfg["geometry"], cfg["contact"], campaign_config["contact"]
+    assert g["ring"]["radial_clearance"] == -3e-5 and g["disk"]["arm_thickness"] == 0.009
+    assert g["disk"]["arm_length"] == 0.012
+    arm_centre = g["disk"]["rim_axial_width"] / 2 + 0.012 / 2
+    assert g["ring"]["axial_center"] == pytest.approx(arm_centre, abs=1e-12)
+    assert c["tangential_stiffness_per_area"] / c["normal_stiffness_per_area"] == pytest.approx(
+        c0["tangential_stiffness_per_area"] / c0["normal_stiffness_per_area"], rel=1e-12)
+    validate_config(cfg)
+    assert support_of(cfg) == {"arm_thickness": 0.009, "arm_length": 0.012}
+    assert design_config(campaign_config, {}) == campaign_config
+
+
+def test_closure_summary_separates_the_taper_from_the_sector_periodic_part():
+    """An all-open state with closure d_n = 40 µm + 2 µm (z - z0) / (z1 - z0) + 0.07 µm |s| on a grid
+    of 7 angles x 5 axial stations: mean 41.035 µm, axial spread 2 µm, periodic part +0.07 µm."""
+    import xarray as xr
+
+    half = np.pi / 30
+    s, z = np.meshgrid(np.linspace(-1, 1, 7), np.linspace(0.03, 0.04, 5))
+    s, z = s.ravel(), z.ravel()
+    closure = 40e-6 + 2e-6 * (z - 0.03) / 0.01 + 0.07e-6 * np.abs(s)
+    radius = 0.32
+    static = xr.Dataset({"x": ("pair", radius * np.cos(s * half)), "y": ("pair", radius * np.sin(s * half)),
+                         "z": ("pair", z), "initial_gap": ("pair", np.full(s.size, 1e-4)),
+                         "gap": ("pair", 1e-4 - closure)})
+    out = closure_summary(static, half)
+    assert out["mean_closure"] == pytest.approx(40e-6 + 1e-6 + 0.07e-6 * np.mean(np.abs(s)), rel=1e-12)
+    assert out["axial_spread"] == pytest.approx(2e-6, rel=1e-9)
+    assert out["periodic_part"] == pytest.approx(0.07e-6, rel=1e-9)

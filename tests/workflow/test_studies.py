@@ -2,7 +2,8 @@
 small study grids, and its outputs agree with the library and with physics (the calibrated hub
 thickness reaches the operating speed; the mesh study's reference level has zero error and linear bricks are stiffer; more modes
 never make the reduced target frequency worse; the contact calibration's chosen set is the one of
-``contact:``)."""
+``contact:``; the contact-state search covers its grid, and while every pair of the default ring stays
+closed its preload is linear in the clearance, interference included)."""
 import numpy as np
 import pandas as pd
 import pytest
@@ -26,6 +27,9 @@ SMALL_STUDIES = {
     "reduction_convergence": {"n_fixed_interface_modes": [10, 20], "n_interface_modes": [5, 10],
                               "band": [0.99, 1.0]},
     "last_point": {"points_below": 2, "n_points": 4, "n_harmonics": 3},   # reduced.nc has H = 3 here
+    "contact_state": {"radial_clearance": [-2.0e-5, 0.0, 2.0e-5, 4.4e-5], "normal_stiffness_per_area": [7.0e+10],
+                      "arm_thickness": [0.006], "arm_length": [0.012, 0.020], "free_clearance": 1.0e-4,
+                      "backbone_clearance": [-1.0e-5], "backbone_friction": [0.7]},
 }
 
 
@@ -74,3 +78,18 @@ def test_study_rules_run_on_a_small_setting(tmp_path):
     assert chosen.friction_coefficient.tolist() == [config["contact"]["friction_coefficient"]]
     assert np.isfinite(chosen.objective).all()
     assert (cc / "calibration_default_backbone.png").stat().st_size > 0
+
+    cs = studies / "contact_state"
+    designs, rings = pd.read_csv(cs / "contact_state_designs.csv"), pd.read_csv(cs / "contact_state_rings.csv")
+    assert len(designs) == 8 and len(rings) == 7 * 8 and designs.rows_reproduced.between(0, 7).all()
+    assert set(designs.arm_length) == {0.012, 0.02} and designs.radial_clearance.min() == -2.0e-5
+    default = rings[rings.ring == "default"].set_index(["arm_length", "radial_clearance"]).sort_index()
+    for length in (0.012, 0.02):
+        p = default.loc[length].mean_pressure
+        assert (default.loc[length].open_fraction.loc[:2.0e-5] == 0).all()
+        assert p[-2.0e-5] > p[0.0] > p[2.0e-5] > 0                    # interference raises the preload
+        assert p[-2.0e-5] - p[0.0] == pytest.approx(p[0.0] - p[2.0e-5], rel=1e-8)   # linear while closed
+    backbone = pd.read_csv(cs / "contact_state_backbone.csv")
+    assert backbone.radial_clearance.tolist() == [-1.0e-5]
+    for name in ("search", "maps_configured", "maps_best", "free_closure", "backbone"):
+        assert (cs / f"contact_state_{name}.png").stat().st_size > 0

@@ -166,10 +166,11 @@ rule contact_state:
         maps_configured=f"{STUDIES}/contact_state/contact_state_maps_configured.png",
         maps_best=f"{STUDIES}/contact_state/contact_state_maps_best.png",
         closure=f"{STUDIES}/contact_state/contact_state_free_closure.png",
+        closure_table=f"{STUDIES}/contact_state/contact_state_free_closure.csv",
     threads: 1
     resources:
         mem_mb=scaled(800),
-        runtime=35,
+        runtime=90,
     log:
         f"{RESULTS}/logs/studies/contact_state.log",
     benchmark:

@@ -46,7 +46,7 @@ if [ -e "$CONF" ] && ! head -n 1 "$CONF" | grep -qF "$MARK"; then
 fi
 
 STATE="$WORK/slurm"
-rm -rf "$STATE" && mkdir -p "$STATE/ctld" "$STATE/spool" "$STATE/log"
+rm -rf "$STATE" "$WORK/slurm_results" "$WORK/local_results" && mkdir -p "$STATE/ctld" "$STATE/spool" "$STATE/log"
 MEM_MB=$(awk '/MemTotal/ {print int($2 / 1024 * 0.8)}' /proc/meminfo)
 cat > "$CONF" <<CONFEOF
 $MARK (written by .ci/slurm/test_cluster.sh)
@@ -92,10 +92,36 @@ log "node $NODE idle"
 SMK=("$BIN/python" -m snakemake --snakefile "$REPO/Snakefile" --directory "$REPO"
      --configfile "$REPO/tests/config_small.yaml")
 cd "$REPO"
+# A crash midway: once KILL_AFTER cluster jobs have finished, the submitting Snakemake is killed
+# (SIGKILL) and the jobs it left in SLURM are cancelled. The resumed run (--unlock, then the profile's
+# --rerun-incomplete) must run no job again that Snakemake had recorded as finished (its log maps each
+# jobid to its benchmark file, written last by the job: those files must keep their timestamps; a job
+# that ended in SLURM after the last status check is rightly run again) and end with the arrays of the
+# local run.
+KILL_AFTER=${KILL_AFTER:-8}
 start=$(date +%s)
+"${SMK[@]}" --workflow-profile profiles/slurm --config "results=$WORK/slurm_results" > "$WORK/slurm_killed.log" 2>&1 &
+smk=$!
+until [ "$(grep -c '^Finished jobid' "$WORK/slurm_killed.log" || true)" -ge "$KILL_AFTER" ] || ! kill -0 "$smk" 2>/dev/null; do
+    sleep 1
+done
+kill -9 "$smk" 2>/dev/null || { echo "the SLURM run ended before $KILL_AFTER jobs finished" >&2; tail -40 "$WORK/slurm_killed.log"; exit 1; }
+wait "$smk" 2>/dev/null || true
+scancel --user "$(id -un)" || true
+awk '/jobid: [0-9]+$/ {id = $NF} /benchmark: / {bench[id] = $NF}
+     /^Finished jobid:/ {done[$3] = 1} END {for (i in done) if (i in bench) print bench[i]}' \
+    "$WORK/slurm_killed.log" | sort | while read -r path; do printf '%s %s\n' "$path" "$(find "$path" -printf '%T@')"; done \
+    > "$WORK/finished_before_kill.txt"
+log "SLURM run killed after $(( $(date +%s) - start )) s, $(wc -l < "$WORK/finished_before_kill.txt") jobs recorded as finished"
+"${SMK[@]}" --workflow-profile profiles/slurm --config "results=$WORK/slurm_results" --unlock > /dev/null 2>&1
 "${SMK[@]}" --workflow-profile profiles/slurm --config "results=$WORK/slurm_results" > "$WORK/slurm_run.log" 2>&1 \
     || { tail -40 "$WORK/slurm_run.log"; exit 1; }
-log "SLURM run: $(( $(date +%s) - start )) s, $(grep -c 'submitted with SLURM jobid' "$WORK/slurm_run.log" || true) cluster jobs"
+rerun=$(while read -r path stamp; do
+            [ "$(find "$path" -printf '%T@')" = "$stamp" ] || echo "$path"
+        done < "$WORK/finished_before_kill.txt")
+[ -z "$rerun" ] || { echo "finished jobs ran again after the resume: $rerun" >&2; exit 1; }
+log "SLURM run resumed: $(grep -c 'submitted with SLURM jobid' "$WORK/slurm_run.log" || true) cluster jobs for the rest, \
+no finished job again; $(( $(date +%s) - start )) s in all"
 start=$(date +%s)
 "${SMK[@]}" --workflow-profile profiles/default --config "results=$WORK/local_results" > "$WORK/local_run.log" 2>&1 \
     || { tail -40 "$WORK/local_run.log"; exit 1; }

@@ -421,8 +421,8 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
                             out, amp, len(rows), s["min_training"])
                 continue
             tasks.append((kappa[rows], values[out][rows, ia], s, f"{out} at amplitude[{ia}] = {amp:.6g}"))
-            keys.append((out, ia))
-    fitted = dict(zip(keys, _fit_all(tasks, workers)))
+            keys.append((out, ia, rows))
+    fitted = {(out, ia): (rows, *fit) for (out, ia, rows), fit in zip(keys, _fit_all(tasks, workers))}
     per_output = {}
     for io, out in enumerate(outputs):
         beta, sigma, factor = np.full(n_amp, np.nan), np.full(n_amp, np.nan), np.full(n_amp, np.nan)
@@ -431,8 +431,7 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
         for ia in range(n_amp):
             if (out, ia) not in fitted:
                 continue
-            rows = np.flatnonzero(use[:, ia])
-            model, ll = fitted[out, ia]
+            rows, model, ll = fitted[out, ia]
             status[io, ia] = STATUS_CONSTANT if model.is_constant else STATUS_GP
             scale[io, ia], nugget[io, ia], loglik[io, ia] = model.scale, model.nugget, ll
             beta[ia], sigma[ia], factor[ia] = model.beta, model.sigma, model.loo_variance_factor()

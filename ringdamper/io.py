@@ -7,9 +7,11 @@ written as VTK triquadratic hexahedra).
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import hashlib
 import json
+import os
 import subprocess
 from pathlib import Path
 
@@ -101,13 +103,30 @@ def provenance(config: dict | None = None, rule: str | None = None) -> dict:
     return attrs
 
 
+@contextlib.contextmanager
+def written_whole(path):
+    """A temporary path beside ``path`` (same folder and suffix) to write into; renamed to ``path``
+    (``os.replace``, atomic on POSIX) once the write has returned. A process killed while writing
+    leaves at ``path`` the previous file, or none, never half a file; a write that raises leaves no
+    temporary behind."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    part = path.with_name(f".{path.stem}.{os.getpid()}.part{path.suffix}")
+    try:
+        yield part
+        os.replace(part, path)
+    finally:
+        part.unlink(missing_ok=True)
+
+
 def write_netcdf(ds: xr.Dataset, path, config: dict | None = None, rule: str | None = None) -> None:
-    """Write ``ds`` (contract checked) with its :func:`provenance` attributes; a rule script passes
-    its configuration and rule name so that the file records the hash of what it depends on (kappa,
-    for a geometry's file, is the dataset's own ``kappa`` attribute)."""
+    """Write ``ds`` (contract checked) with its :func:`provenance` attributes, whole or not at all
+    (:func:`written_whole`); a rule script passes its configuration and rule name so that the file
+    records the hash of what it depends on (kappa, for a geometry's file, is the dataset's own
+    ``kappa`` attribute)."""
     check_contract(ds)
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    ds.assign_attrs(provenance(config, rule)).to_netcdf(path, engine="netcdf4")
+    with written_whole(path) as part:
+        ds.assign_attrs(provenance(config, rule)).to_netcdf(part, engine="netcdf4")
 
 
 class InputFileError(ValueError):
@@ -151,18 +170,19 @@ def read_netcdf(path, kind: str | None = None) -> xr.Dataset:
 
 
 def write_yaml(data: dict, path) -> None:
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    with open(path, "w") as fh:
+    """``data`` as YAML in its insertion order, whole or not at all (:func:`written_whole`)."""
+    with written_whole(path) as part, open(part, "w") as fh:
         yaml.safe_dump(data, fh, sort_keys=False)
 
 
 def write_vtu(model, path, point_data: dict | None = None, cell_data: dict | None = None) -> None:
-    """Mesh of a SectorModel (nodes = the model's nodes) with named fields, for ParaView."""
+    """Mesh of a SectorModel (nodes = the model's nodes) with named fields, for ParaView, whole or
+    not at all (:func:`written_whole`)."""
     from skfem.io.meshio import to_meshio
 
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
     cells = {k: [np.asarray(v)] for k, v in (cell_data or {}).items()}
-    to_meshio(model.geometry.mesh, point_data=point_data or {}, cell_data=cells).write(path)
+    with written_whole(path) as part:
+        to_meshio(model.geometry.mesh, point_data=point_data or {}, cell_data=cells).write(part)
 
 
 def mesh_fields(model) -> tuple[dict, dict]:

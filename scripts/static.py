@@ -6,7 +6,7 @@ static fields); empty VTU files only when no mesh could be built."""
 import logging
 
 from ringdamper.io import log_to, mesh_fields, write_netcdf, write_vtu
-from ringdamper.static.stage import run_static
+from ringdamper.static.stage import run_static, stall_if_injected
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log_to(sm.log[0])
@@ -21,4 +21,5 @@ else:
     logging.getLogger("mesh").info("kappa=%s nodes=%d dofs=%d elements=%d pairs=%d", sm.params.kappa,
                                    len(model.nodes), model.n_dofs, model.geometry.mesh.t.shape[1],
                                    len(model.pairs))
+stall_if_injected(sm.config, sm.params.kappa)  # tests of a kill mid-job only
 write_netcdf(ds, sm.output.nc, sm.config, sm.rule)

@@ -1,19 +1,24 @@
-"""Kills and bad files lose nothing. A run of three geometries' chains killed with SIGKILL midway
-(Snakemake and its jobs, as a crash would) and resumed (``--unlock``, ``--rerun-incomplete``)
-recomputes only the jobs that were running or had not started, and ends with the arrays of an
-uninterrupted run. A corrupt reduced.nc fails its dnnm job naming the file, and once the file is
-repaired, even with its old timestamp, a rerun recomputes dnnm.nc."""
+"""Kills and bad files lose nothing. A run of three geometries' chains is killed with SIGKILL
+(Snakemake and its jobs, as a crash would) at a known point: one geometry's static job, stalled by the
+test-only ``fault_injection.stall_static``, has written its two VTU files and not yet static.nc, while
+the other core has gone on with the other chains. Resumed (``--unlock``, ``--rerun-incomplete``, and the
+configuration without the stall), the run recomputes only the jobs that were running or had not
+started, that half-done job among them, and ends with the arrays of an uninterrupted run. A corrupt
+reduced.nc fails its dnnm job naming the file, and once the file is repaired, even with its old
+timestamp, a rerun recomputes dnnm.nc."""
 import os
 import re
 import shutil
 import signal
 import subprocess
 import time
+from typing import NamedTuple
 
 import pytest
+import yaml
 
 from ringdamper.campaign.sampling import make_samples
-from ringdamper.io import read_netcdf
+from ringdamper.io import InputFileError, read_netcdf
 from tests.snakemake_run import SMALL_CONFIG as CONFIG, run_snakemake, snakemake_command
 from tools.compare_results import file_differences
 
@@ -60,29 +65,58 @@ def _belongs(path: str, outputs: list[str]) -> bool:
     return any(path == out or path.startswith(out.rstrip("/") + "/") for out in outputs)
 
 
+class Resumed(NamedTuple):
+    results: object         # the results folder
+    gids: list              # the three geometries
+    stalled: str            # the geometry whose static job was stalled, then killed
+    at_kill: dict           # path -> mtime (ns) of every output at the kill
+    unreadable: list        # the NetCDF files at the kill that could not be read
+    scheduled: list         # (outputs, reason) of every job the resume runs
+    after: dict             # path -> mtime (ns) of every output after the resume
+
+
+def _unreadable(paths) -> list[str]:
+    """The NetCDF files of ``paths`` that :func:`read_netcdf` cannot read."""
+    bad = []
+    for path in (p for p in paths if p.endswith(".nc")):
+        try:
+            read_netcdf(path)
+        except InputFileError:
+            bad.append(path)
+    return bad
+
+
 @pytest.fixture(scope="module")
-def resumed(tmp_path_factory, small_config):
-    """Kill a run once four of its jobs have finished, then resume it: (results, gids, mtimes at the
-    kill, jobs the resume schedules, mtimes after the resume)."""
-    results = tmp_path_factory.mktemp("killed") / "results"
+def resumed(tmp_path_factory, small_config) -> Resumed:
+    """Kill a run once its stalled job waits and four jobs have finished, then resume it."""
+    work = tmp_path_factory.mktemp("killed")
+    results = work / "results"
     gids = _gids(small_config)
+    stalled = gids[1]
+    stalling = work / "stalling.yaml"
+    kappa = make_samples(small_config["sampling"]).set_index("gid").loc[stalled, ["kappa1", "kappa2", "kappa3"]]
+    stalling.write_text(yaml.safe_dump(dict(small_config, fault_injection={"stall_static": [kappa.tolist()]})))
     targets = [results / "geometry" / gid / "dnnm.nc" for gid in gids]
-    proc = subprocess.Popen(snakemake_command(results, CONFIG, *targets, cores=2), start_new_session=True,
+    proc = subprocess.Popen(snakemake_command(results, stalling, *targets, cores=2), start_new_session=True,
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    log = results / "logs" / "static" / f"{stalled}.log"
     deadline = time.monotonic() + 600
-    while len(list((results / "benchmarks").rglob("*.tsv"))) < 4 and proc.poll() is None:
-        assert time.monotonic() < deadline, "the run did not reach four jobs in 600 s"
+    while not (log.exists() and "stalled by the configuration" in log.read_text()
+               and len(list((results / "benchmarks").rglob("*.tsv"))) >= 4):
+        assert proc.poll() is None, "the run ended before it could be killed"
+        assert time.monotonic() < deadline, "the stall and four finished jobs not reached in 600 s"
         time.sleep(0.05)
-    assert proc.poll() is None, "the run ended before it could be killed"
     os.killpg(proc.pid, signal.SIGKILL)
     proc.wait()
     at_kill = _outputs(results)
+    unreadable = _unreadable(at_kill)
     assert run_snakemake(results, CONFIG, "--unlock", *targets).returncode == 0
     dry = run_snakemake(results, CONFIG, "--dry-run", "--rerun-incomplete", *targets)
     assert dry.returncode == 0, dry.stderr[-3000:]
     run = run_snakemake(results, CONFIG, "--rerun-incomplete", *targets, cores=2)
     assert run.returncode == 0, run.stderr[-3000:]
-    return results, gids, at_kill, _scheduled_jobs(dry.stdout + dry.stderr), _outputs(results)
+    return Resumed(results, gids, stalled, at_kill, unreadable, _scheduled_jobs(dry.stdout + dry.stderr),
+                   _outputs(results))
 
 
 @pytest.mark.slow
@@ -90,7 +124,8 @@ def test_a_killed_run_resumes_recomputing_only_what_was_unfinished(resumed):
     """The resume reruns the jobs that were running at the kill (at most one per core: the only
     rerun jobs with outputs on disk), those that had not started and those downstream of them, for
     no other reason; every other file keeps its timestamp."""
-    results, gids, at_kill, scheduled, after = resumed
+    results, gids, at_kill, scheduled, after = (resumed.results, resumed.gids, resumed.at_kill,
+                                                 resumed.scheduled, resumed.after)
     for outputs, reason in scheduled:
         assert all(part.split(":")[0].strip() in RESUME_REASONS for part in reason.split(";")), (outputs, reason)
     started = [outputs for outputs, _ in scheduled if any(_belongs(f, outputs) for f in at_kill)]
@@ -105,8 +140,22 @@ def test_a_killed_run_resumes_recomputing_only_what_was_unfinished(resumed):
 
 
 @pytest.mark.slow
+def test_the_job_killed_with_part_of_its_outputs_written_is_recomputed_whole(resumed):
+    """The stalled static job had written static.vtu and mesh.vtu, not static.nc: the resume reruns it
+    as incomplete and rewrites both files. No NetCDF at the kill was half-written (a job killed while
+    writing one leaves none: io.written_whole)."""
+    folder = resumed.results / "geometry" / resumed.stalled
+    written = {str(folder / name) for name in ("static.vtu", "mesh.vtu")}
+    assert written <= set(resumed.at_kill) and str(folder / "static.nc") not in resumed.at_kill
+    (_, reason), = [job for job in resumed.scheduled if str(folder / "static.nc") in job[0]]
+    assert reason.split(":")[0] in ("Forced execution", "Incomplete output files"), reason
+    assert all(resumed.after[f] != resumed.at_kill[f] for f in written)
+    assert resumed.unreadable == []
+
+
+@pytest.mark.slow
 def test_a_resumed_run_ends_with_the_arrays_of_an_uninterrupted_one(resumed, small_campaign):
-    results, gids = resumed[:2]
+    results, gids = resumed.results, resumed.gids
     for rel in [f"geometry/{gid}/{name}" for gid in gids for name in STAGES] + ["modal/nd_diagram.nc"]:
         assert file_differences(results / rel, small_campaign / rel) == [], rel
 
@@ -115,7 +164,7 @@ def test_a_resumed_run_ends_with_the_arrays_of_an_uninterrupted_one(resumed, sma
 def test_a_corrupt_input_fails_its_job_naming_it_and_a_rerun_after_repair_recomputes(resumed, tmp_path):
     """The repaired reduced.nc keeps the timestamp it had before the corruption (a restored backup):
     dnnm.nc is recomputed all the same, because the failed job left no output behind."""
-    results, gids = resumed[:2]
+    results, gids = resumed.results, resumed.gids
     work = tmp_path / "results"
     shutil.copytree(results, work)
     reduced, dnnm = (work / "geometry" / gids[1] / name for name in ("reduced.nc", "dnnm.nc"))

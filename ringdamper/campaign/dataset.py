@@ -17,12 +17,11 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ..nonlinear.continuation import Status
+from ..nonlinear.continuation import USABLE_STATUS, Status
 from ..io import unreadable, variable
 
 log = logging.getLogger(__name__)
 
-USABLE_STATUS = (int(Status.CONVERGED), int(Status.DRIFT))
 HELD_STATUS = int(Status.DRIFT)
 CHAIN_FAILED = 99  # status of every point of a geometry whose chain failed before the dNNM
 STATUS_NAMES = {int(s): s.name.lower().replace("_", " ") for s in Status} | {CHAIN_FAILED: "chain failed"}

@@ -34,11 +34,11 @@ import xarray as xr
 from scipy.interpolate import PchipInterpolator
 from scipy.optimize import brentq
 
+from ringdamper.nonlinear.continuation import usable_status
 from ringdamper.nonlinear.frf import forced_response, resonance_peak
 from ringdamper.io import variable
 from ringdamper.nonlinear.normalisation import normalised_frequency
 
-USABLE = (0, 3)  # converged (3: with the ring's mean rigid-body equilibrium held by the gauge)
 
 
 @dataclass
@@ -55,7 +55,7 @@ class EEBMBackbone:
     def from_arrays(cls, alpha, q, gamma, omega, status) -> "EEBMBackbone":
         """Keep the leading run of points with a usable status and finite, positive values."""
         alpha, q, gamma, omega = (np.asarray(a, float) for a in (alpha, q, gamma, omega))
-        good = (np.isin(status, USABLE) & np.isfinite(q) & np.isfinite(gamma) & np.isfinite(omega)
+        good = (usable_status(status) & np.isfinite(q) & np.isfinite(gamma) & np.isfinite(omega)
                 & (q > 0) & (gamma > 0))
         n = int(np.argmin(good)) if not good.all() else good.size
         if n < 2:

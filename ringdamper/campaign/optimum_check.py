@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .summary import USABLE, backbone_summary, dnnm_summary
+from ..nonlinear.continuation import usable_status
+from .summary import backbone_summary, dnnm_summary
 
 OUTPUTS = ("q_res_z", "omega0", "zeta", "gamma")
 
@@ -33,7 +34,7 @@ def surrogate_vs_computed(predicted: dict, computed, max_level=np.inf) -> pd.Dat
     c = dnnm_summary(computed, max_level)
     rows = [{"quantity": k, "predicted": p[k], "computed": c[k], "error": p[k] - c[k],
              "relative error (%)": 100 * (p[k] / c[k] - 1)} for k in c]
-    ok = np.isin(computed.status.values, USABLE)
+    ok = usable_status(computed.status.values)
     for name in OUTPUTS:
         y = computed[name].values
         both = ok & np.isfinite(y) & np.isfinite(predicted[name])

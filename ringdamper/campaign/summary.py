@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-USABLE = (0, 3)
+from ..nonlinear.continuation import usable_status
 
 
 def backbone_summary(q, omega0, zeta, status=None, max_level=np.inf) -> dict:
@@ -17,7 +17,7 @@ def backbone_summary(q, omega0, zeta, status=None, max_level=np.inf) -> dict:
     q, omega0, zeta = (np.asarray(a, float) for a in (q, omega0, zeta))
     ok = np.isfinite(q) & np.isfinite(omega0) & np.isfinite(zeta)
     if status is not None:
-        ok &= np.isin(status, USABLE)
+        ok &= usable_status(status)
     if not ok.any():
         raise ValueError("the backbone has no usable point")
     idx = np.flatnonzero(ok)

@@ -60,6 +60,16 @@ class Status(IntEnum):
     MAX_POINTS = 4           # arc-length budget exhausted before the end of the range
 
 
+#: The statuses of the points that are solutions, which every reader of a result keeps: converged (0),
+#: and converged with the ring's mean rigid-body equilibrium held by the gauge (3, flagged).
+USABLE_STATUS = (int(Status.CONVERGED), int(Status.DRIFT))
+
+
+def usable_status(status) -> np.ndarray:
+    """Per point, whether its ``status`` is one of :data:`USABLE_STATUS`."""
+    return np.isin(status, USABLE_STATUS)
+
+
 @dataclass
 class StepControl:
     """Step-size rules (in the continuation parameter or arc length). ``turn`` [rad]: nominal

@@ -15,7 +15,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from ringdamper.nonlinear.continuation import Status
+from ringdamper.nonlinear.continuation import usable_status
 from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc
@@ -93,7 +93,7 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
                                                           cfg["n_harmonics"], cfg["n_time_samples"])
     highest = highest_harmonic_fraction(backbone.model.modal, backbone.eta, backbone.omega)
     warn_truncation(highest, alpha)
-    n_min, lifting = separation_indicators(backbone, contacts, np.isin(res.status, (Status.CONVERGED, Status.DRIFT)))
+    n_min, lifting = separation_indicators(backbone, contacts, usable_status(res.status))
     warn_separation(lifting, alpha, cfg["n_harmonics"])
     values = {"omega0": normalised_frequency(res.omega, omega_stuck_default), "frequency": res.frequency,
               "zeta": res.zeta, "gamma": res.gamma, "phi": res.phi, "q_res_z": res.q_res_peak,

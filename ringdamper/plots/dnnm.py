@@ -4,9 +4,8 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
+from ..nonlinear.continuation import usable_status
 from .static import draw_surface_map
-
-USABLE = (0, 3)  # converged (3: with the ring's mean rigid-body equilibrium unbalanced)
 
 
 def draw_backbones(axes, datasets: dict, styles: dict | None = None) -> None:
@@ -16,7 +15,7 @@ def draw_backbones(axes, datasets: dict, styles: dict | None = None) -> None:
     (status 3, the ring would ratchet)."""
     for label, ds in datasets.items():
         status = ds.status.values
-        ok = np.isin(status, USABLE)
+        ok = usable_status(status)
         gauged = (status == 3)[ok]
         q = 1e3 * ds.q_res_z.values[ok]
         style = (styles or {}).get(label, {"color": "k", "lw": 2} if label == "default" else {"lw": 1})
@@ -51,7 +50,7 @@ def draw_energy_map(ax, static, energy, title, vmax=None):
 
 def plot_energy_map(dnnm, static, path, label: str = "default") -> None:
     """Energy dissipated per cycle by each pair at the amplitude of maximum damping."""
-    ok = np.isin(dnnm.status.values, USABLE)
+    ok = usable_status(dnnm.status.values)
     i = int(np.nanargmax(np.where(ok, dnnm.zeta.values, np.nan)))
     fig, ax = plt.subplots(figsize=(7, 2.6))
     draw_energy_map(ax, static, dnnm.energy_dissipated.values[i],

@@ -10,8 +10,6 @@ from __future__ import annotations
 import copy
 import time
 
-import numpy as np
-
 from ringdamper.fem.model import stuck_contact_stiffness
 from ringdamper.fem.model import build_model
 from ringdamper.fem.prestress import prestressed_stiffness, rpm_to_rad_s

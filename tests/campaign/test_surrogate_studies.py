@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from ringdamper.campaign.dataset import aggregate, kappa, usable_mask
+from ringdamper.campaign.dataset import aggregate, usable_mask
 from ringdamper.campaign.exploration import (ENVELOPE_OUTPUTS, at_levels, cube_grid, explore_grid,
                                              find_optimum, forcing_of, level_function, response_axis,
                                              summary)

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from ringdamper.fem.model import build_model
-from ringdamper.geometry.sector import PART_RING, build_sector
+from ringdamper.geometry.sector import build_sector
 from ringdamper.geometry.shape import check_kappa, unit_bump
 
 TABLE2 = {1: (-1.5e-3, 0.0, 2.5e-3), 2: (-2.0e-3, 0.0, 1.5e-3), 3: (-1.5e-3, 0.0, 1.0e-3)}

@@ -18,11 +18,11 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-USABLE = (0, 3)
+from ...nonlinear.continuation import usable_status
 
 
 def _usable(ds: xr.Dataset):
-    ok = np.isin(ds.status.values, USABLE) & np.isfinite(ds.q_res_z.values) & np.isfinite(ds.zeta.values)
+    ok = usable_status(ds.status.values) & np.isfinite(ds.q_res_z.values) & np.isfinite(ds.zeta.values)
     return {k: ds[k].values[ok] for k in ("q_res_z", "zeta", "frequency", "gamma")}
 
 

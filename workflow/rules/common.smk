@@ -33,19 +33,23 @@ MESH_LEVEL_PEAK_MB = {(1, 1): 199, (2, 1): 258, (3, 1): 667, (1, 2): 322, (2, 2)
 MESH_BACKBONE_PEAK_MB = {1: 443, 2: 5302}
 
 
-def mesh_backbone_mem_mb(wildcards, attempt):
-    """Twice the measured peak of the factor (beyond the measured ones, scaled with the element count,
-    factor³), per attempt."""
-    factor = int(wildcards.factor)
-    largest = max(MESH_BACKBONE_PEAK_MB)
-    peak = MESH_BACKBONE_PEAK_MB.get(factor, MESH_BACKBONE_PEAK_MB[largest] * (factor / largest) ** 3)
-    return int(2 * peak * attempt)
+def twice_the_peak(peak_mb):
+    """mem_mb of jobs each measured at a peak RSS of ``peak_mb(wildcards)`` MB: twice that, per
+    attempt."""
+    return lambda wildcards, attempt: int(2 * peak_mb(wildcards) * attempt)
 
 
-def mesh_level_mem_mb(wildcards, attempt):
-    """Twice the measured peak of the level (of the 3x quadratic one if not measured), per attempt."""
-    peak = MESH_LEVEL_PEAK_MB.get((int(wildcards.factor), int(wildcards.order)), MESH_LEVEL_PEAK_MB[3, 2])
-    return 2 * peak * attempt
+def mesh_level_peak_mb(wildcards):
+    """The measured peak of the mesh level (of the 3x quadratic one if not measured)."""
+    level = int(wildcards.factor), int(wildcards.order)
+    return MESH_LEVEL_PEAK_MB.get(level, MESH_LEVEL_PEAK_MB[3, 2])
+
+
+def mesh_backbone_peak_mb(wildcards):
+    """The measured peak of the refinement factor; beyond the measured ones, that of the largest scaled
+    with the element count, factor³."""
+    factor, largest = int(wildcards.factor), max(MESH_BACKBONE_PEAK_MB)
+    return MESH_BACKBONE_PEAK_MB.get(factor, MESH_BACKBONE_PEAK_MB[largest] * (factor / largest) ** 3)
 
 
 # The optimum found on the surrogate is a real geometry: gid ``optimum``, whose kappa is only known

@@ -45,7 +45,7 @@ rule fidelity_mesh_level:
         order=r"\d+",
     threads: 1
     resources:
-        mem_mb=mesh_level_mem_mb,
+        mem_mb=twice_the_peak(mesh_level_peak_mb),
         runtime=25,
     log:
         f"{RESULTS}/logs/fidelity/mesh_{{factor}}_{{order}}.log",
@@ -66,7 +66,7 @@ rule fidelity_mesh_backbone_case:
         factor=r"\d+",
     threads: 1
     resources:
-        mem_mb=mesh_backbone_mem_mb,
+        mem_mb=twice_the_peak(mesh_backbone_peak_mb),
         runtime=60,
     log:
         f"{RESULTS}/logs/fidelity/mesh_backbone_{{factor}}.log",

@@ -122,6 +122,7 @@ rerun=$(while read -r path stamp; do
 [ -z "$rerun" ] || { echo "finished jobs ran again after the resume: $rerun" >&2; exit 1; }
 log "SLURM run resumed: $(grep -c 'submitted with SLURM jobid' "$WORK/slurm_run.log" || true) cluster jobs for the rest, \
 no finished job again; $(( $(date +%s) - start )) s in all"
+log "resumed run: $("$BIN/python" -m tools.slurm_overhead "$STATE/log/slurmctld.log" "$WORK/slurm_run.log")"
 start=$(date +%s)
 "${SMK[@]}" --workflow-profile profiles/default --config "results=$WORK/local_results" > "$WORK/local_run.log" 2>&1 \
     || { tail -40 "$WORK/local_run.log"; exit 1; }

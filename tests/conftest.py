@@ -26,17 +26,19 @@ def small_config():
     return load_config(TESTS / "config_small.yaml")
 
 
-SNAKEMAKE_GROUP = "snakemake"
+CAMPAIGN_GROUP = "small_campaign"
 
 
+@pytest.hookimpl(tryfirst=True)  # before pytest-xdist's, which writes the groups into the test ids
 def pytest_collection_modifyitems(items):
-    """Under ``pytest -n 2 --dist loadgroup`` (``make test``), every test that runs Snakemake goes to
-    one worker, one after another: they share the session's small campaign and the repository's
-    ``.snakemake`` metadata (locks, incomplete markers), and each already uses both cores. The other
-    tests spread over the workers around them."""
+    """Under ``pytest -n 2 --dist loadgroup`` (``make test``), the tests of a module go to one worker,
+    so that its module-scoped fixtures (a campaign run, a reduced model) are built once; the modules
+    that use the session's small campaign go together to one worker, which builds it once. Snakemake
+    runs of different modules may overlap: each writes into a results folder of its own, and
+    Snakemake's locks and incomplete markers in the repository's ``.snakemake`` are per output file."""
+    campaign_modules = {item.module for item in items if "small_campaign" in getattr(item, "fixturenames", ())}
     for item in items:
         module = getattr(item, "module", None)
-        runs_snakemake = module is not None and any(
-            hasattr(module, name) for name in ("run_snakemake", "snakemake_command"))
-        if runs_snakemake or "small_campaign" in getattr(item, "fixturenames", ()):
-            item.add_marker(pytest.mark.xdist_group(SNAKEMAKE_GROUP))
+        if module is not None:
+            group = CAMPAIGN_GROUP if module in campaign_modules else module.__name__
+            item.add_marker(pytest.mark.xdist_group(group))

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import glob
 import hashlib
 import json
 import os
@@ -107,10 +108,12 @@ def provenance(config: dict | None = None, rule: str | None = None) -> dict:
 def written_whole(path):
     """A temporary path beside ``path`` (same folder and suffix) to write into; renamed to ``path``
     (``os.replace``, atomic on POSIX) once the write has returned. A process killed while writing
-    leaves at ``path`` the previous file, or none, never half a file; a write that raises leaves no
-    temporary behind."""
+    leaves at ``path`` the previous file, or none, never half a file, and its temporary, which the
+    next write of ``path`` removes; a write that raises leaves no temporary behind."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
+    for stale in path.parent.glob(f".{glob.escape(path.stem)}.*.part{glob.escape(path.suffix)}"):
+        stale.unlink(missing_ok=True)  # left by a killed writer
     part = path.with_name(f".{path.stem}.{os.getpid()}.part{path.suffix}")
     try:
         yield part

@@ -1,6 +1,7 @@
 """A stage file is written whole or not at all (io.written_whole): a process killed with SIGKILL in the
 middle of writing a NetCDF file, after half of its bytes reached the disk, leaves at the file's path
-the previous file, or no file, never the half; a write that raises leaves no temporary behind."""
+the previous file, or no file, never the half, and the next write of the file removes the half; a
+write that raises leaves no temporary behind."""
 import signal
 import subprocess
 import sys
@@ -47,6 +48,9 @@ def test_a_process_killed_in_the_middle_of_a_write_leaves_no_half_file(tmp_path,
         np.testing.assert_array_equal(read_netcdf(path)["x"].values, [1.0, 2.0])
     leftovers = [p.name for p in tmp_path.iterdir() if p != path]
     assert len(leftovers) == 1 and leftovers[0].startswith(".dnnm.")   # the killed process's half
+    write_netcdf(xr.Dataset({"x": variable("i", [5.0, 6.0], "m", "rerun")}), path)   # the job rerun
+    assert [p.name for p in tmp_path.iterdir()] == ["dnnm.nc"]
+    np.testing.assert_array_equal(read_netcdf(path)["x"].values, [5.0, 6.0])
 
 
 def test_a_write_that_raises_keeps_the_previous_file_and_leaves_no_temporary(tmp_path, monkeypatch):

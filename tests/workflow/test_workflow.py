@@ -54,7 +54,7 @@ def test_small_campaign_runs_and_agrees_with_the_library(tmp_path, small_config)
 def test_the_tests_of_a_module_share_one_worker(request):
     """Under ``make test`` (``--dist loadgroup``) a test carries its group in its id, which sends the
     tests of a module to one worker (tests/conftest.py). pytest 9.2 ignores the attribute
-    pytest-xdist 3.8 writes the group into (pytest-xdist#1386, hence the pytest pin): the tests would
+    pytest-xdist 3.8 writes the group into (docs/testing.md, hence the pytest pin): the tests would
     then be spread over both workers, each building the module's and the session's fixtures."""
     if getattr(request.config.option, "loadgroup", False):  # set on the workers of --dist loadgroup
         assert request.node.nodeid.endswith(f"@{request.module.__name__}"), request.node.nodeid

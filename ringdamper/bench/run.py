@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from ringdamper.config import load_config
+from ringdamper.nonlinear.continuation import usable_status
 
 
 def _fe_chain(config: dict) -> dict:
@@ -127,7 +128,7 @@ def _default_frf(reduced, contacts, backbone, config: dict) -> dict:
     from ringdamper.bench.dynamics import time_frf
     from ringdamper.nonlinear.stage import structure_from_reduced
 
-    ok = np.isin(backbone.status.values, (0, 3))
+    ok = usable_status(backbone.status.values)
     mid = int(np.nanargmax(np.where(ok, backbone.zeta.values, np.nan)))
     return time_frf(structure_from_reduced(reduced, 1), contacts, float(backbone.gamma.values[mid]),
                     2 * np.pi * float(backbone.frequency.values[mid]),

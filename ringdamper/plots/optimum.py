@@ -7,6 +7,7 @@ import numpy as np
 
 from .dnnm import draw_backbones, draw_energy_map
 from .static import draw_contact_maps
+from ..nonlinear.continuation import usable_status
 
 STYLES = {"default": {"color": "k", "lw": 1.8}, "optimum": {"color": "tab:red", "lw": 1.8}}
 
@@ -59,7 +60,7 @@ def plot_optimum_dynamics(dnnms: dict, curves: dict, path) -> None:
     ax = fig.add_subplot(grid[1, :])
     for ring, ds in dnnms.items():
         color = STYLES[ring]["color"]
-        ok = np.isin(ds.status.values, (0, 3))
+        ok = usable_status(ds.status.values)
         ax.plot(ds.omega0.values[ok], 1e3 * ds.q_res_z.values[ok], "-.", color=color, lw=0.9)
         for c in curves[ring]:
             q_e, w_e = 1e3 * float(c.eebm_amplitude), float(c.eebm_omega0)

@@ -36,6 +36,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from ringdamper.nonlinear.normalisation import PAPER_NORMALISED_FREQUENCY, normalised_frequency
+from ringdamper.nonlinear.continuation import usable_status
 
 # Paper §2.6 / Fig. 8 on the default geometry.
 PAPER_TARGET = {"zeta_max": 0.15e-2,                 # maximum modal damping ratio
@@ -102,7 +103,7 @@ def backbone_metrics(q, omega, zeta, status, omega_stuck: float, q_max: float = 
     q, omega, zeta = (np.asarray(v, float) for v in (q, omega, zeta))
     status = np.asarray(status, int)
     counts = np.bincount(np.clip(status, 0, 5), minlength=6).tolist()
-    ok = np.isin(status, (0, 3)) & np.isfinite(q) & np.isfinite(omega) & np.isfinite(zeta) & (q > 0)
+    ok = usable_status(status) & np.isfinite(q) & np.isfinite(omega) & np.isfinite(zeta) & (q > 0)
     if ok.sum() < 3:
         nan = float("nan")
         return Metrics(nan, nan, nan, nan, nan, nan, 0, False, float(ok.mean()), counts, nan, nan)
@@ -346,7 +347,7 @@ def plot_backbones(curves: list[tuple[str, dict]], path, q_max: float = 1.0e-3) 
 
     fig, axes = plt.subplots(1, 3, figsize=(11, 4.0), dpi=90)
     for k, (label, c) in enumerate(curves):
-        ok = np.isin(c["status"], (0, 3)) & np.isfinite(c["q"]) & (c["q"] <= q_max)
+        ok = usable_status(c["status"]) & np.isfinite(c["q"]) & (c["q"] <= q_max)
         q = c["q"][ok] * 1e3
         style = dict(lw=2.2, color="k") if k == 0 else dict(lw=1.0)
         axes[0].plot(q, c["omega0"][ok], label=label, **style)

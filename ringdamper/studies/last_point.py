@@ -19,6 +19,7 @@ import xarray as xr
 from ringdamper.io import declared_dataset, variable
 from ringdamper.nonlinear.separation import separation_indicators
 from ringdamper.nonlinear.stage import DNNM_VARIABLES, STATUS_MEANING, amplitude_grid, solve_backbone
+from ringdamper.nonlinear.continuation import usable_status
 
 
 def fine_grid(campaign_alpha: np.ndarray, points_below: int, n_points: int) -> np.ndarray:
@@ -37,7 +38,7 @@ def trace(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: floa
     """Backbone of the target mode at ``n_harmonics`` on ``alpha``: status, frequency, ζ, γ, |q_res,z|,
     n_min and the number of open pairs per amplitude."""
     backbone, contacts, res, _ = solve_backbone(reduced, static, config, target_hz, alpha, n_harmonics)
-    usable = np.isin(res.status, (0, 3))
+    usable = usable_status(res.status)
     n_min, lifting = separation_indicators(backbone, contacts, usable)
     values = {"frequency": res.frequency, "zeta": res.zeta, "gamma": res.gamma, "q_res_z": res.q_res_peak,
               "normal_force_ratio_min": n_min, "lifting_pairs": lifting}
@@ -84,7 +85,7 @@ def plot(traces: dict[str, xr.Dataset], path) -> None:
     onset = onset_of_separation(traces["fine"])
     lo = traces["fine"].amplitude.values[0] / 1.5
     for name, ds in traces.items():
-        ok = np.isin(ds.status.values, (0, 3)) & (ds.amplitude.values >= lo)
+        ok = usable_status(ds.status.values) & (ds.amplitude.values >= lo)
         a = ds.amplitude.values[ok]
         label = f"H = {ds.attrs['n_harmonics']}, {name} grid"
         axes[0, 0].plot(a, ds.frequency.values[ok], label=label, **styles[name])

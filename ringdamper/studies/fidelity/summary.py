@@ -13,6 +13,7 @@ import xarray as xr
 
 from .dials import DEFAULT, case_key, default_value, dial_rings, dials, rings, value_label
 from .quantities import gamma_at, relative_errors, user_quantities
+from ...nonlinear.continuation import usable_status
 
 COST_KEYS = ("static_cpu_s", "reduction_cpu_s", "dnnm_cpu_s", "chain_cpu_s", "chain_time_s", "peak_rss_mb")
 
@@ -45,7 +46,7 @@ def case_summary(ds: xr.Dataset, quantities: dict, reference: dict) -> dict:
     relative errors against ``reference`` (``error_<quantity>``, ``error_max`` the largest)."""
     err = relative_errors(quantities, reference)
     return {**{k: float(ds.attrs[k]) for k in COST_KEYS},
-            "n_failed": int(np.sum(~np.isin(ds.status.values, (0, 3)))),
+            "n_failed": int(np.sum(~usable_status(ds.status.values))),
             **quantities, **{f"error_{k}": e for k, e in err.items()}, "error_max": max(err.values())}
 
 

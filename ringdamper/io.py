@@ -51,28 +51,6 @@ def check_contract(ds: xr.Dataset) -> None:
         raise ContractError(f"variables without units/long_name: {missing}")
 
 
-#: Configuration sections each rule's NetCDF files depend on: the hash of these, and only these, is
-#: the file's ``config_sha256`` (a change elsewhere in config.yaml leaves it unchanged).
-_MODEL = ("material", "geometry", "mesh", "operation", "contact")
-_DNNM = _MODEL + ("static", "reduction", "modal", "dnnm")
-_SURROGATE = ("sampling",) + _DNNM + ("surrogate",)
-CONFIG_SECTIONS = {
-    "static": _MODEL + ("static",),
-    "reduced": _MODEL + ("reduction",),
-    "modal": _MODEL + ("static", "modal"),
-    "dnnm": _DNNM,
-    "frf_curve": _DNNM + ("frf",),
-    "aggregate": ("sampling",) + _DNNM,
-    "kriging": _SURROGATE,
-    "validation": _SURROGATE,
-    "one_at_a_time": _SURROGATE + ("exploration",),
-    "optimum": _SURROGATE + ("exploration",),
-    "sobol": _SURROGATE + ("sensitivity",),
-    "last_point": _DNNM + ("studies",),
-    "study_reduced": _MODEL + ("reduction", "dnnm", "studies"),
-}
-
-
 @functools.lru_cache(maxsize=1)
 def software_provenance() -> dict:
     """Versions of the package and of numpy, scipy and openturns, and the git commit of the source
@@ -91,15 +69,14 @@ def software_provenance() -> dict:
             **{f"{lib}_version": version(lib) for lib in ("numpy", "scipy", "openturns")}}
 
 
-def provenance(config: dict | None = None, rule: str | None = None) -> dict:
-    """Provenance attributes of a NetCDF file: :func:`software_provenance`, and with ``config`` and
-    ``rule`` (a key of :data:`CONFIG_SECTIONS`) the sections the file depends on and the SHA-256 of
-    their canonical JSON."""
+def provenance(config: dict | None = None) -> dict:
+    """Provenance attributes of a NetCDF file: :func:`software_provenance`, and with ``config`` (the
+    configuration sections the file depends on, as its rule passes them) their names and the SHA-256
+    of their canonical JSON."""
     attrs = dict(software_provenance())
     if config is not None:
-        sections = CONFIG_SECTIONS[rule]
-        text = json.dumps({k: config[k] for k in sections}, sort_keys=True, separators=(",", ":"))
-        attrs.update(config_sections=" ".join(sections),
+        text = json.dumps(config, sort_keys=True, separators=(",", ":"))
+        attrs.update(config_sections=" ".join(config),
                      config_sha256=hashlib.sha256(text.encode()).hexdigest())
     return attrs
 
@@ -122,14 +99,14 @@ def written_whole(path):
         part.unlink(missing_ok=True)
 
 
-def write_netcdf(ds: xr.Dataset, path, config: dict | None = None, rule: str | None = None) -> None:
+def write_netcdf(ds: xr.Dataset, path, config: dict | None = None) -> None:
     """Write ``ds`` (contract checked) with its :func:`provenance` attributes, whole or not at all
-    (:func:`written_whole`); a rule script passes its configuration and rule name so that the file
-    records the hash of what it depends on (kappa, for a geometry's file, is the dataset's own
-    ``kappa`` attribute)."""
+    (:func:`written_whole`); a rule script passes the configuration sections its rule declares, so
+    that the file records the hash of what it depends on (kappa, for a geometry's file, is the
+    dataset's own ``kappa`` attribute)."""
     check_contract(ds)
     with written_whole(path) as part:
-        ds.assign_attrs(provenance(config, rule)).to_netcdf(part, engine="netcdf4")
+        ds.assign_attrs(provenance(config)).to_netcdf(part, engine="netcdf4")
 
 
 class InputFileError(ValueError):
@@ -203,17 +180,6 @@ def mesh_fields(model) -> tuple[dict, dict]:
     return ({"body": model.node_body, "pair_id": pair_id, "contact_normal": normal,
              "forcing_node": forcing},
             {"part": model.geometry.part})
-
-
-def log_to(path) -> None:
-    """Send stderr and the package's ``logging`` records (INFO and above) to the rule's log file."""
-    import logging
-    import sys
-
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    sys.stderr = open(path, "w", buffering=1)
-    logging.basicConfig(stream=sys.stderr, level=logging.INFO, format="%(name)s: %(message)s",
-                        force=True)
 
 
 def write_csv(rows: list[dict], path) -> None:

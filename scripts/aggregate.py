@@ -11,4 +11,4 @@ ds = aggregate(samples, dict(zip(sm.params.gids, sm.input.dnnm)))
 for split in ("training", "validation", "reference"):
     status = ds.status.values[(ds.split == split).values]
     log.info("%s: %d geometries, points %s", split, len(status), status_summary(status.ravel()))
-write_netcdf(ds, sm.output[0], sm.config, sm.rule)
+write_netcdf(ds, sm.output[0], sm.params.config)

@@ -1,12 +1,12 @@
 """Rule script: dnnm.nc of the reference rings -> backbones (Figs. 8, 12) and E_d map (Fig. 9b)."""
-import logging
 
-from ringdamper.io import log_to, read_netcdf
+from ringdamper.io import read_netcdf
+from ringdamper.logs import to_file
 from ringdamper.plots.dnnm import plot_backbones, plot_energy_map
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-log_to(sm.log[0])
+log = to_file(sm.log[0])
 datasets = {label: read_netcdf(path, "dnnm") for label, path in zip(sm.params.labels, sm.input.dnnm)}
 plot_backbones(datasets, sm.output.backbones)
 plot_energy_map(datasets["default"], read_netcdf(sm.input.default_static, "static"), sm.output.energy)
-logging.getLogger("backbone_figures").info("rings %s -> %s", list(datasets), list(sm.output))
+log.info("rings %s -> %s", list(datasets), list(sm.output))

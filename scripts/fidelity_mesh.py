@@ -2,12 +2,13 @@
 (ringdamper.studies.fidelity.mesh)."""
 import yaml
 
-from ringdamper.io import log_to, write_csv
+from ringdamper.io import write_csv
+from ringdamper.logs import to_file
 from ringdamper.studies.fidelity.mesh import extrapolate
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-log_to(sm.log[0])
+log = to_file(sm.log[0])
 rows = [yaml.safe_load(open(p)) for p in sm.input]
-limits = extrapolate(rows, sm.config["fidelity"]["mesh_families"])
+limits = extrapolate(rows, sm.params.config["fidelity"]["mesh_families"])
 write_csv(rows, sm.output.levels)
 write_csv(limits, sm.output.limits)

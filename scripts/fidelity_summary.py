@@ -5,13 +5,14 @@ import matplotlib
 matplotlib.use("Agg")
 import pandas as pd  # noqa: E402
 
-from ringdamper.io import log_to, write_yaml  # noqa: E402
+from ringdamper.io import write_yaml  # noqa: E402
+from ringdamper.logs import to_file
 from ringdamper.plots.fidelity import plot_dials, plot_mesh, plot_pareto  # noqa: E402
 from ringdamper.studies.fidelity.summary import campaign_summary, pareto_points  # noqa: E402
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-log_to(sm.log[0])
-cfg = sm.config
+log = to_file(sm.log[0])
+cfg = sm.params.config
 dials, mesh, surrogate = (pd.read_csv(p) for p in (sm.input.dials, sm.input.mesh, sm.input.surrogate))
 summary = campaign_summary(cfg, dials.to_dict("records"), sm.params.n_geometries, sm.params.n_cores)
 write_yaml(summary, sm.output.summary)

@@ -1,12 +1,13 @@
 """Rule script: campaign/dataset.nc -> results/fidelity/surrogate.csv (Kriging training-set size, LHS
 against sequential designs; ringdamper.studies.fidelity.surrogate)."""
-from ringdamper.io import log_to, read_netcdf, write_csv
+from ringdamper.io import read_netcdf, write_csv
+from ringdamper.logs import to_file
 from ringdamper.studies.fidelity.quantities import gamma_at
 from ringdamper.studies.fidelity.surrogate import backbone_dataset, training_size_study
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-log_to(sm.log[0])
-cfg = sm.config
+log = to_file(sm.log[0])
+cfg = sm.params.config
 dataset = read_netcdf(sm.input[0]).load()
 d = dataset.sel(geometry=sm.params.default_gid)
 gammas = gamma_at(backbone_dataset(dataset.amplitude.values, d.q_res_z.values, d.zeta.values, d.omega0.values,

@@ -5,9 +5,11 @@ import yaml
 from ringdamper.campaign.forced_check import EEBMBackbone, forced_curve
 from ringdamper.nonlinear.stage import contacts_from_static, structure_from_reduced
 from ringdamper.io import read_netcdf, write_netcdf
+from ringdamper.logs import to_file
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-cfg = sm.config
+log = to_file(sm.log[0])
+cfg = sm.params.config
 gamma = yaml.safe_load(open(sm.input.levels))["gamma_N"][int(sm.wildcards.level) - 1]
 dnnm = read_netcdf(sm.input.dnnm, "dnnm")
 H, nt = int(dnnm.attrs["n_harmonics"]), int(dnnm.attrs["n_time_samples"])
@@ -19,8 +21,7 @@ ds = forced_curve(structure_from_reduced(read_netcdf(sm.input.reduced, "reduced"
                   band=cfg["frf"]["frequency_band"],
                   omega_reference=float(dnnm.attrs["omega_stuck_default"]))
 ds.attrs.update(gid=sm.wildcards.gid, level=int(sm.wildcards.level), kappa=dnnm.attrs["kappa"])
-write_netcdf(ds, sm.output[0], sm.config, sm.rule)
-open(sm.log[0], "w").write(
-    f"gamma {gamma:.6g} N: {ds.sizes['point']} points, status {int(ds.status)} ({ds.attrs['reason']}), "
-    f"peak {1e3 * float(ds.peak_amplitude):.5f} mm vs E-EBM {1e3 * float(ds.eebm_amplitude):.5f} mm, "
-    f"wall {ds.attrs['wall_time_s']:.2f} s\n")
+write_netcdf(ds, sm.output[0], sm.params.config)
+log.info("gamma %.6g N: %d points, status %d (%s), peak %.5f mm vs E-EBM %.5f mm, wall %.2f s", gamma,
+         ds.sizes["point"], int(ds.status), ds.attrs["reason"], 1e3 * float(ds.peak_amplitude),
+         1e3 * float(ds.eebm_amplitude), ds.attrs["wall_time_s"])

@@ -7,7 +7,7 @@ from ringdamper.logs import to_file
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = to_file(sm.log[0])
-settings = sm.config["surrogate"]
+settings = sm.params.config["surrogate"]
 ds = read_netcdf(sm.input[0])
 mask = usable_mask(ds)
 check_training(ds, mask, settings["min_training"])
@@ -16,4 +16,4 @@ fit = fit_campaign(ds.isel(geometry=train), mask=mask.isel(geometry=train), sett
                    workers=sm.threads)
 log.info("fitted %d models; Q2 per output (median over amplitudes): %s", int((fit.status < 2).sum()),
          {str(o): round(float(fit.q2.sel(output=o).median()), 4) for o in fit.output.values})
-write_netcdf(fit, sm.output[0], sm.config, sm.rule)
+write_netcdf(fit, sm.output[0], sm.params.config)

@@ -7,11 +7,11 @@ from ringdamper.logs import to_file
 from ringdamper.plots.surrogate import plot_one_at_a_time
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-to_file(sm.log[0])
-cfg = sm.config["exploration"]
+log = to_file(sm.log[0])
+cfg = sm.params.config["exploration"]
 ds = read_netcdf(sm.input.dataset)
 levels = response_axis(ds, usable_mask(ds), cfg["n_levels"])
 oat = sweeps(KrigingSurrogate(read_netcdf(sm.input.kriging)), cfg["oat_points"], levels)
-write_netcdf(oat, sm.output.nc, sm.config, sm.rule)
+write_netcdf(oat, sm.output.nc, sm.params.config)
 for i, path in enumerate([sm.output.fig14, sm.output.fig15, sm.output.fig16]):
     plot_one_at_a_time(oat, i, path)

@@ -12,7 +12,7 @@ from ringdamper.plots.surrogate import plot_envelopes
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = to_file(sm.log[0])
-cfg = sm.config["exploration"]
+cfg = sm.params.config["exploration"]
 ds = read_netcdf(sm.input.dataset)
 surrogate = KrigingSurrogate(read_netcdf(sm.input.kriging))
 levels = response_axis(ds, usable_mask(ds), cfg["n_levels"])
@@ -24,5 +24,5 @@ record = optimum_record(surrogate, grid, optimum, forcing, cfg)
 log.info("optimum: %s", record)
 write_yaml(record, sm.output.optimum)
 grid_ds = grid_dataset(surrogate, grid, optimum, cfg["grid_points"])
-write_netcdf(grid_ds, sm.output.grid, sm.config, sm.rule)
+write_netcdf(grid_ds, sm.output.grid, sm.params.config)
 plot_envelopes(grid_ds, sm.output.figure)

@@ -1,7 +1,8 @@
 """Rule script: kappa -> results/geometry/{gid}/reduced.nc (ringdamper.reduction.stage)."""
-from ringdamper.io import log_to, write_netcdf
+from ringdamper.io import write_netcdf
+from ringdamper.logs import to_file
 from ringdamper.reduction.stage import run_reduced
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-log_to(sm.log[0])
-write_netcdf(run_reduced(sm.config, sm.params.kappa), sm.output[0], sm.config, sm.rule)
+log = to_file(sm.log[0])
+write_netcdf(run_reduced(sm.params.config, sm.params.kappa), sm.output[0], sm.params.config)

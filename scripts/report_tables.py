@@ -4,8 +4,10 @@ import yaml
 
 from ringdamper.campaign.report_tables import write_html_table
 from ringdamper.io import read_netcdf
+from ringdamper.logs import to_file
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
+log = to_file(sm.log[0])
 write_html_table(pd.read_csv(sm.input.validation), sm.output.validation,
                  "Kriging validation on the held-out geometries")
 optimum = pd.json_normalize(yaml.safe_load(open(sm.input.optimum)), sep=".").T.reset_index()
@@ -15,4 +17,3 @@ for name in ("sobol_global", "sobol_local"):
     ds = read_netcdf(sm.input[name])
     write_html_table(ds.to_dataframe().reset_index(), sm.output[name],
                      f"Sobol indices ({name.split('_')[1]}): " + ds.attrs.get("domain", ""))
-open(sm.log[0], "w").close()

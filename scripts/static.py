@@ -3,14 +3,14 @@ mesh.vtu (parts, contact pairs, normals, forcing node) for ParaView, from the on
 
 A failed geometry writes static.nc with status 99 and its reason, and both VTU files of its mesh (NaN
 static fields); empty VTU files only when no mesh could be built."""
-import logging
 
-from ringdamper.io import log_to, mesh_fields, write_netcdf, write_vtu
-from ringdamper.static.stage import run_static, stall_if_injected
+from ringdamper.io import mesh_fields, write_netcdf, write_vtu
+from ringdamper.logs import to_file
+from ringdamper.static.stage import run_static
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-log_to(sm.log[0])
-ds, model, fields = run_static(sm.config, sm.params.kappa)
+log = to_file(sm.log[0])
+ds, model, fields = run_static(sm.params.config, sm.params.kappa)
 if model is None:
     for path in (sm.output.vtu, sm.output.mesh):
         open(path, "w").close()
@@ -18,8 +18,7 @@ else:
     write_vtu(model, sm.output.vtu, point_data=fields)
     points, cells = mesh_fields(model)
     write_vtu(model, sm.output.mesh, point_data=points, cell_data=cells)
-    logging.getLogger("mesh").info("kappa=%s nodes=%d dofs=%d elements=%d pairs=%d", sm.params.kappa,
-                                   len(model.nodes), model.n_dofs, model.geometry.mesh.t.shape[1],
-                                   len(model.pairs))
-stall_if_injected(sm.config, sm.params.kappa)  # tests of a kill mid-job only
-write_netcdf(ds, sm.output.nc, sm.config, sm.rule)
+    log.info("kappa=%s nodes=%d dofs=%d elements=%d pairs=%d", sm.params.kappa,
+             len(model.nodes), model.n_dofs, model.geometry.mesh.t.shape[1],
+             len(model.pairs))
+write_netcdf(ds, sm.output.nc, sm.params.config)

@@ -1,10 +1,10 @@
 """Rule script: static.nc of the default and one-at-a-time rings -> contact maps (Fig. 11)."""
-import logging
 
-from ringdamper.io import log_to, read_netcdf
+from ringdamper.io import read_netcdf
+from ringdamper.logs import to_file
 from ringdamper.plots.static import plot_contact_maps
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-log_to(sm.log[0])
+log = to_file(sm.log[0])
 plot_contact_maps({label: read_netcdf(path) for label, path in zip(sm.params.labels, sm.input)}, sm.output[0])
-logging.getLogger("static_maps").info("rings %s -> %s", list(sm.params.labels), sm.output[0])
+log.info("rings %s -> %s", list(sm.params.labels), sm.output[0])

@@ -2,12 +2,13 @@
 (ringdamper.nonlinear.stage.default_normalisation)."""
 import yaml
 
-from ringdamper.io import log_to, read_netcdf, write_yaml
+from ringdamper.io import read_netcdf, write_yaml
+from ringdamper.logs import to_file
 from ringdamper.nonlinear.stage import default_normalisation
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-log_to(sm.log[0])
+log = to_file(sm.log[0])
 with open(sm.input.resonance) as fh:
     target_hz = yaml.safe_load(fh)["frequency_hz"]
-write_yaml(default_normalisation(read_netcdf(sm.input.reduced, "reduced"), read_netcdf(sm.input.static, "static"), sm.config,
+write_yaml(default_normalisation(read_netcdf(sm.input.reduced, "reduced"), read_netcdf(sm.input.static, "static"), sm.params.config,
                                  target_hz), sm.output[0])

@@ -6,14 +6,15 @@ import itertools
 
 import numpy as np
 
-from ringdamper.io import log_to, write_csv
+from ringdamper.io import write_csv
+from ringdamper.logs import to_file
 from ringdamper.plots.static import plot_contact_maps, plot_free_closure, plot_variety_search
 from ringdamper.studies.contact_state import (best_design, closure_summary, design_config, design_states,
                                               free_closure, search, support_of)
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-log_to(sm.log[0])
-config = sm.config
+log = to_file(sm.log[0])
+config = sm.params.config
 ring_rows, design_rows = search(config)
 write_csv(ring_rows, sm.output.rings)
 write_csv(design_rows, sm.output.designs)

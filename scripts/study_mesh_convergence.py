@@ -1,7 +1,8 @@
 """Rule script: configuration -> studies/mesh_convergence.csv (ringdamper.studies.mesh_convergence)."""
-from ringdamper.io import log_to, write_csv
+from ringdamper.io import write_csv
+from ringdamper.logs import to_file
 from ringdamper.studies.mesh_convergence import mesh_study
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-log_to(sm.log[0])
-write_csv(mesh_study(sm.config, sm.config["studies"]["mesh_convergence"]["levels"]), sm.output[0])
+log = to_file(sm.log[0])
+write_csv(mesh_study(sm.params.config, sm.params.config["studies"]["mesh_convergence"]["levels"]), sm.output[0])

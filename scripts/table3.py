@@ -2,8 +2,10 @@
 from ringdamper.campaign.forced_check import table3
 from ringdamper.campaign.report_tables import write_html_table
 from ringdamper.io import read_netcdf
+from ringdamper.logs import to_file
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
+log = to_file(sm.log[0])
 table = table3({ring: [read_netcdf(p) for p in sm.input[ring]] for ring in ("default", "optimum")})
 table.to_csv(sm.output.csv, index=False, float_format="%.6g")
 short = {"gamma_N": "γ (N)", "default_eebm_mm": "default E-EBM (mm)", "default_frf_mm": "default FRF (mm)",
@@ -20,4 +22,4 @@ write_html_table(table.rename(columns=short), sm.output.html,
     "Status 0: the curve crossed the whole band; 3: it did, with points where the ring's mean "
     "rigid-body equilibrium is held by the gauge (the ring would ratchet); 1: the continuation "
     "stopped; 4: point budget exhausted."])
-open(sm.log[0], "w").write(table.to_string() + "\n")
+log.info("\n%s", table.to_string())

@@ -1,8 +1,11 @@
 """Run the repository's Snakefile in a subprocess, as a user would, on a configuration and a results
 folder of the test's own (shared by the workflow tests)."""
+import os
 import subprocess
 import sys
 from pathlib import Path
+
+import yaml
 
 REPO = Path(__file__).resolve().parent.parent
 SMALL_CONFIG = REPO / "tests" / "config_small.yaml"  # the coarse test campaign
@@ -16,7 +19,47 @@ def snakemake_command(results, configfile, *args, cores=1) -> list[str]:
             "--config", f"results={results}"]  # last: --config takes every following key=value
 
 
-def run_snakemake(results, configfile, *args, cores=1, timeout=900):
-    """Run :func:`snakemake_command` to its end (output captured)."""
+def effective_config(configfile) -> dict:
+    """The configuration a run with ``--configfile configfile`` sees: the Snakefile's own
+    ``config.yaml``, updated key by key with ``configfile`` (Snakemake merges them so)."""
+    from snakemake.common.configfile import load_configfile
+    from snakemake.utils import update_config
+
+    config = load_configfile(REPO / "config.yaml")
+    update_config(config, load_configfile(configfile))
+    return config
+
+
+def fault_environment(faults: dict, folder) -> dict:
+    """The environment of a run whose jobs suffer ``faults`` (``tests/faults/sitecustomize.py``: kind
+    -> list of kappa), written to ``folder``/faults.yaml."""
+    path = Path(folder) / "faults.yaml"
+    path.write_text(yaml.safe_dump(faults))
+    python_path = os.pathsep.join(filter(None, [str(REPO / "tests" / "faults"), str(REPO),
+                                                os.environ.get("PYTHONPATH")]))
+    return dict(os.environ, PYTHONPATH=python_path, RINGDAMPER_TEST_FAULTS=str(path))
+
+
+def run_snakemake(results, configfile, *args, cores=1, timeout=900, env=None):
+    """Run :func:`snakemake_command` to its end (output captured), in ``env`` (default: this
+    process's environment)."""
     return subprocess.run(snakemake_command(results, configfile, *args, cores=cores), capture_output=True,
-                          text=True, timeout=timeout)
+                          text=True, timeout=timeout, env=env)
+
+
+def dry_run_jobs(results, configfile, *args) -> dict:
+    """rule -> number of jobs a dry run of ``snakemake *args`` would run (its "Job stats" table; empty
+    when there is nothing to be done)."""
+    run = run_snakemake(results, configfile, "--dry-run", *args)
+    assert run.returncode == 0, run.stderr[-3000:]
+    lines = (run.stdout + run.stderr).splitlines()
+    if not any(line.startswith("Job stats:") for line in lines):
+        return {}
+    table = lines[[i for i, line in enumerate(lines) if line.startswith("Job stats:")][0] + 3:]
+    jobs = {}
+    for line in table:
+        fields = line.split()
+        if len(fields) != 2 or fields[0] == "total":
+            break
+        jobs[fields[0]] = int(fields[1])
+    return jobs

@@ -14,7 +14,6 @@ about Z and its axial translation determinate. Geometric nonlinearity is neglect
 from __future__ import annotations
 
 import logging
-import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -173,28 +172,6 @@ def static_fields(model: SectorModel, result: StaticContactResult | None = None,
     return {"displacement": u, "N0": n0, "gap": gap}
 
 
-def injected_fault(config: dict, kappa, kind: str = "static") -> bool:
-    """Whether ``kappa`` is listed in the test-only ``fault_injection.<kind>`` of the configuration."""
-    listed = config.get("fault_injection", {}).get(kind, [])
-    return any(np.array_equal(np.asarray(k, dtype=float), np.asarray(kappa, dtype=float)) for k in listed)
-
-
-#: How long a stalled static job (``fault_injection.stall_static``) waits to be killed before it fails.
-STALL_SECONDS = 600
-
-
-def stall_if_injected(config: dict, kappa) -> None:
-    """The test-only ``fault_injection.stall_static``: a listed geometry's static job stops here (its
-    rule script calls this between its VTU files and static.nc) and waits to be killed, so that a test
-    kills the run at a known point, in a job with part of its outputs written. It logs the stall
-    first (the test's cue) and raises if nobody kills it within :data:`STALL_SECONDS`."""
-    if injected_fault(config, kappa, "stall_static"):
-        log.warning("kappa=%s stalled by the configuration (fault_injection.stall_static): waiting to be "
-                    "killed", list(kappa))
-        time.sleep(STALL_SECONDS)
-        raise RuntimeError(f"fault_injection.stall_static: not killed within {STALL_SECONDS} s")
-
-
 def run_static(config: dict, kappa) -> tuple[xr.Dataset, SectorModel | None, dict | None]:
     """The static stage of geometry ``kappa`` at the operating speed: (static.nc dataset, model,
     static.vtu point fields). It never raises: a failure (meshing, assembly or solve) gives
@@ -203,8 +180,6 @@ def run_static(config: dict, kappa) -> tuple[xr.Dataset, SectorModel | None, dic
     model = None
     try:
         model = build_model(build_sector(config, kappa), config)
-        if injected_fault(config, kappa):
-            raise RuntimeError("fault injected by the configuration (fault_injection.static)")
         result, prob = solve_static(model, config)
     except Exception as err:  # a failed geometry must not stop the campaign
         log.exception("static stage failed for kappa=%s", list(kappa))

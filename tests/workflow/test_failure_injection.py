@@ -1,14 +1,13 @@
-"""A geometry whose chain fails loses nothing else. The test-only switch ``fault_injection.static``
-makes one training geometry's static stage raise after meshing; the campaign still ends (return code
+"""A geometry whose chain fails loses nothing else. A test-side fault (``tests/faults``) makes one
+training geometry's static solve raise after meshing; the campaign still ends (return code
 0), the geometry's static.nc and dnnm.nc have a solved file's variables, all NaN, with status 99 and
 the reason, the dataset keeps it flagged, and the Kriging fits exclude it with a warning naming it."""
 import numpy as np
 import pytest
-import yaml
 
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.io import read_netcdf
-from tests.snakemake_run import run_snakemake
+from tests.snakemake_run import SMALL_CONFIG, fault_environment, run_snakemake
 
 
 @pytest.mark.slow
@@ -17,12 +16,10 @@ def test_an_injected_static_failure_is_flagged_and_excluded_and_the_campaign_end
     kappa = table[["kappa1", "kappa2", "kappa3"]].to_numpy()
     training = table.index[(table.split == "training") & np.any(kappa != 0, axis=1)]
     failed, healthy = table.gid[training[-1]], table.gid[training[0]]
-    config = dict(small_config, fault_injection={"static": [kappa[training[-1]].tolist()]})
-    path = tmp_path / "faulty.yaml"
-    path.write_text(yaml.safe_dump(config))
+    env = fault_environment({"static": [kappa[training[-1]].tolist()]}, tmp_path)
     out = tmp_path / "results"
 
-    run = run_snakemake(out, path, out / "surrogate" / "kriging.nc", cores=2, timeout=1800)
+    run = run_snakemake(out, SMALL_CONFIG, out / "surrogate" / "kriging.nc", cores=2, timeout=1800, env=env)
     assert run.returncode == 0, run.stderr[-3000:]
 
     for name, kind in (("static.nc", "static"), ("dnnm.nc", "dnnm")):

@@ -1,8 +1,8 @@
 """Kills and bad files lose nothing. A run of three geometries' chains is killed with SIGKILL
-(Snakemake and its jobs, as a crash would) at a known point: one geometry's static job, stalled by the
-test-only ``fault_injection.stall_static``, has written its two VTU files and not yet static.nc, while
-the other core has gone on with the other chains. Resumed (``--unlock``, ``--rerun-incomplete``, and the
-configuration without the stall), the run recomputes only the jobs that were running or had not
+(Snakemake and its jobs, as a crash would) at a known point: one geometry's static job, stalled by a
+test-side fault (``tests/faults``), has written its two VTU files and not yet static.nc, while
+the other core has gone on with the other chains. Resumed (``--unlock``, ``--rerun-incomplete``, without
+the stall), the run recomputes only the jobs that were running or had not
 started, that half-done job among them, and ends with the arrays of an uninterrupted run. A corrupt
 reduced.nc fails its dnnm job naming the file, and once the file is repaired, even with its old
 timestamp, a rerun recomputes dnnm.nc."""
@@ -15,11 +15,10 @@ import time
 from typing import NamedTuple
 
 import pytest
-import yaml
 
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.io import InputFileError, read_netcdf
-from tests.snakemake_run import SMALL_CONFIG as CONFIG, run_snakemake, snakemake_command
+from tests.snakemake_run import SMALL_CONFIG as CONFIG, fault_environment, run_snakemake, snakemake_command
 from tools.compare_results import file_differences
 
 STAGES = ("static.nc", "reduced.nc", "dnnm.nc")
@@ -93,15 +92,14 @@ def resumed(tmp_path_factory, small_config) -> Resumed:
     results = work / "results"
     gids = _gids(small_config)
     stalled = gids[1]
-    stalling = work / "stalling.yaml"
     kappa = make_samples(small_config["sampling"]).set_index("gid").loc[stalled, ["kappa1", "kappa2", "kappa3"]]
-    stalling.write_text(yaml.safe_dump(dict(small_config, fault_injection={"stall_static": [kappa.tolist()]})))
+    env = fault_environment({"stall_static": [kappa.tolist()]}, work)
     targets = [results / "geometry" / gid / "dnnm.nc" for gid in gids]
-    proc = subprocess.Popen(snakemake_command(results, stalling, *targets, cores=2), start_new_session=True,
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    proc = subprocess.Popen(snakemake_command(results, CONFIG, *targets, cores=2), start_new_session=True,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
     log = results / "logs" / "static" / f"{stalled}.log"
     deadline = time.monotonic() + 600
-    while not (log.exists() and "stalled by the configuration" in log.read_text()
+    while not (log.exists() and "stalled by the test" in log.read_text()
                and len(list((results / "benchmarks").rglob("*.tsv"))) >= 4):
         assert proc.poll() is None, "the run ended before it could be killed"
         assert time.monotonic() < deadline, "the stall and four finished jobs not reached in 600 s"

@@ -1,10 +1,57 @@
 # Shared by the rules. The design of experiments is seeded and deterministic, so it is computed at
 # parse time: the DAG is static and a dry run lists every job (the `samples` rule writes the same table).
+import json
+
 import yaml
 
 from ringdamper.campaign.sampling import REFERENCE_RINGS, make_samples
 
 SAMPLES = make_samples(config["sampling"]).set_index("gid")
+
+
+# The configuration sections each stage's outputs depend on: the stage's own, and through its input
+# files those of every stage upstream. A rule passes them to its script as `params.config`, the only
+# configuration the script reads, so Snakemake's params trigger reruns exactly the jobs downstream of
+# an edited section, and every NetCDF file records their hash (ringdamper.io.provenance).
+MODEL = ("material", "geometry", "mesh", "operation")
+STATIC = MODEL + ("contact", "static")
+REDUCED = MODEL + ("reduction",)
+MODAL = STATIC + ("modal",)
+DNNM = STATIC + ("reduction", "modal", "dnnm")
+FORCED = DNNM + ("frf",)
+DATASET = ("sampling",) + DNNM
+SURROGATE = DATASET + ("surrogate",)
+EXPLORATION = SURROGATE + ("exploration",)
+SENSITIVITY = SURROGATE + ("sensitivity",)
+STUDY = DNNM + ("studies",)
+FIDELITY_SUMMARY = DNNM + ("frf", "sensitivity", "exploration", "fidelity")
+
+
+def sections(*names):
+    """The configuration restricted to ``names`` (a rule's ``params.config``): whole sections, or one
+    key of a section as ``section.key`` (a study whose jobs read only part of its section). A section
+    the configuration lacks (the studies' in a user's campaign) is left out: its rules cannot run.
+    Keys are sorted at every level, so that reordering a configuration file reruns nothing."""
+    selected = {}
+    for name in names:
+        section, _, key = name.partition(".")
+        if section not in config:
+            continue
+        if key:
+            selected.setdefault(section, {})[key] = config[section][key]
+        else:
+            selected[section] = config[section]
+    return json.loads(json.dumps(selected, sort_keys=True))
+
+
+def log_file(name):
+    """The log file of job ``name`` (may hold wildcards): results/logs/<name>.log."""
+    return f"{RESULTS}/logs/{name}.log"
+
+
+def benchmark_file(name):
+    """The time and memory record of job ``name``: results/benchmarks/<name>.tsv."""
+    return f"{RESULTS}/benchmarks/{name}.tsv"
 
 
 def geometry_ids():

@@ -5,6 +5,8 @@ rule stuck_default:
         resonance=f"{RESULTS}/modal/resonance.yaml",
     output:
         f"{RESULTS}/modal/stuck_default.yaml",
+    params:
+        config=sections(*DNNM),
     threads: 1
     resources:
         mem_mb=scaled(1000),
@@ -12,9 +14,9 @@ rule stuck_default:
     group:
         f"geometry_{DEFAULT_GID}"
     log:
-        f"{RESULTS}/logs/stuck_default.log",
+        log_file("stuck_default"),
     benchmark:
-        f"{RESULTS}/benchmarks/stuck_default.tsv"
+        benchmark_file("stuck_default")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -30,6 +32,7 @@ rule dnnm:
     output:
         f"{RESULTS}/geometry/{{gid}}/dnnm.nc",
     params:
+        config=sections(*DNNM),
         kappa=kappa_of,
     threads: 1
     resources:
@@ -38,9 +41,9 @@ rule dnnm:
     group:
         "geometry_{gid}"
     log:
-        f"{RESULTS}/logs/dnnm/{{gid}}.log",
+        log_file("dnnm/{gid}"),
     benchmark:
-        f"{RESULTS}/benchmarks/dnnm/{{gid}}.tsv"
+        benchmark_file("dnnm/{gid}")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -63,9 +66,9 @@ rule backbone_figures:
         mem_mb=scaled(600),
         runtime=5,
     log:
-        f"{RESULTS}/logs/backbone_figures.log",
+        log_file("backbone_figures"),
     benchmark:
-        f"{RESULTS}/benchmarks/backbone_figures.tsv"
+        benchmark_file("backbone_figures")
     conda:
         "../../envs/ringdamper.yaml"
     script:

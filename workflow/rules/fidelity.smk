@@ -23,14 +23,16 @@ rule fidelity_case:
         resonance=f"{RESULTS}/modal/resonance.yaml",
     output:
         f"{FIDELITY}/cases/{{ring}}/{{dial}}/{{value}}.nc",
+    params:
+        config=sections(*DNNM, "fidelity.rings", "fidelity.dials"),
     threads: 1
     resources:
         mem_mb=scaled(1600),
         runtime=40,
     log:
-        f"{RESULTS}/logs/fidelity/{{ring}}_{{dial}}_{{value}}.log",
+        log_file("fidelity/{ring}_{dial}_{value}"),
     benchmark:
-        f"{RESULTS}/benchmarks/fidelity/{{ring}}_{{dial}}_{{value}}.tsv"
+        benchmark_file("fidelity/{ring}_{dial}_{value}")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -43,14 +45,16 @@ rule fidelity_mesh_level:
     wildcard_constraints:
         factor=r"\d+",
         order=r"\d+",
+    params:
+        config=sections(*MODAL, "fidelity.mesh_families"),
     threads: 1
     resources:
         mem_mb=twice_the_peak(mesh_level_peak_mb),
         runtime=25,
     log:
-        f"{RESULTS}/logs/fidelity/mesh_{{factor}}_{{order}}.log",
+        log_file("fidelity/mesh_{factor}_{order}"),
     benchmark:
-        f"{RESULTS}/benchmarks/fidelity/mesh_{{factor}}_{{order}}.tsv"
+        benchmark_file("fidelity/mesh_{factor}_{order}")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -64,14 +68,16 @@ rule fidelity_mesh_backbone_case:
         f"{FIDELITY}/mesh_backbone/{{factor}}.nc",
     wildcard_constraints:
         factor=r"\d+",
+    params:
+        config=sections(*DNNM, "fidelity.mesh_backbone"),
     threads: 1
     resources:
         mem_mb=twice_the_peak(mesh_backbone_peak_mb),
         runtime=60,
     log:
-        f"{RESULTS}/logs/fidelity/mesh_backbone_{{factor}}.log",
+        log_file("fidelity/mesh_backbone_{factor}"),
     benchmark:
-        f"{RESULTS}/benchmarks/fidelity/mesh_backbone_{{factor}}.tsv"
+        benchmark_file("fidelity/mesh_backbone_{factor}")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -84,11 +90,16 @@ rule fidelity_mesh_backbone:
     output:
         f"{FIDELITY}/mesh_backbone.csv",
     params:
+        config=sections(*FIDELITY_SUMMARY),
         factors=MESH_BACKBONE_FACTORS,
+    threads: 1
+    resources:
+        mem_mb=scaled(400),
+        runtime=5,
     log:
-        f"{RESULTS}/logs/fidelity/mesh_backbone.log",
+        log_file("fidelity/mesh_backbone"),
     benchmark:
-        f"{RESULTS}/benchmarks/fidelity/mesh_backbone.tsv"
+        benchmark_file("fidelity/mesh_backbone")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -101,11 +112,16 @@ rule fidelity_dials:
     output:
         f"{FIDELITY}/dials.csv",
     params:
+        config=sections(*FIDELITY_SUMMARY),
         cases=[list(key) for key in FIDELITY_CASES],
+    threads: 1
+    resources:
+        mem_mb=scaled(400),
+        runtime=5,
     log:
-        f"{RESULTS}/logs/fidelity/dials.log",
+        log_file("fidelity/dials"),
     benchmark:
-        f"{RESULTS}/benchmarks/fidelity/dials.tsv"
+        benchmark_file("fidelity/dials")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -118,10 +134,16 @@ rule fidelity_mesh:
     output:
         levels=f"{FIDELITY}/mesh.csv",
         limits=f"{FIDELITY}/mesh_limits.csv",
+    params:
+        config=sections(*FIDELITY_SUMMARY),
+    threads: 1
+    resources:
+        mem_mb=scaled(400),
+        runtime=5,
     log:
-        f"{RESULTS}/logs/fidelity/mesh.log",
+        log_file("fidelity/mesh"),
     benchmark:
-        f"{RESULTS}/benchmarks/fidelity/mesh.tsv"
+        benchmark_file("fidelity/mesh")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -134,15 +156,16 @@ rule fidelity_surrogate:
     output:
         f"{FIDELITY}/surrogate.csv",
     params:
+        config=sections(*EXPLORATION, "frf", "sensitivity", "fidelity"),
         default_gid=DEFAULT_GID,
     threads: 1
     resources:
         mem_mb=scaled(1000),
         runtime=40,
     log:
-        f"{RESULTS}/logs/fidelity/surrogate.log",
+        log_file("fidelity/surrogate"),
     benchmark:
-        f"{RESULTS}/benchmarks/fidelity/surrogate.tsv"
+        benchmark_file("fidelity/surrogate")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -158,10 +181,14 @@ rule fidelity_forced:
         frf_optimum=frf_curves(OPTIMUM_GID),
     output:
         f"{FIDELITY}/forced.csv",
+    threads: 1
+    resources:
+        mem_mb=scaled(400),
+        runtime=5,
     log:
-        f"{RESULTS}/logs/fidelity/forced.log",
+        log_file("fidelity/forced"),
     benchmark:
-        f"{RESULTS}/benchmarks/fidelity/forced.tsv"
+        benchmark_file("fidelity/forced")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -179,13 +206,18 @@ rule fidelity_summary:
         mesh=report(f"{FIDELITY}/fidelity_mesh.png", category="Fidelity"),
         pareto=report(f"{FIDELITY}/fidelity_pareto.png", category="Fidelity"),
     params:
+        config=sections(*FIDELITY_SUMMARY),
         n_geometries=len(geometry_ids()),
         n_validation=int((SAMPLES.split == "validation").sum()),
         n_cores=2,
+    threads: 1
+    resources:
+        mem_mb=scaled(400),
+        runtime=5,
     log:
-        f"{RESULTS}/logs/fidelity/summary.log",
+        log_file("fidelity/summary"),
     benchmark:
-        f"{RESULTS}/benchmarks/fidelity/summary.tsv"
+        benchmark_file("fidelity/summary")
     conda:
         "../../envs/ringdamper.yaml"
     script:

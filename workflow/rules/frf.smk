@@ -9,14 +9,16 @@ rule frf_levels:
         dnnm=f"{RESULTS}/geometry/{DEFAULT_GID}/dnnm.nc",
     output:
         f"{RESULTS}/frf/levels.yaml",
+    params:
+        config=sections(*FORCED),
     threads: 1
     resources:
         mem_mb=scaled(300),
         runtime=5,
     log:
-        f"{RESULTS}/logs/frf/levels.log",
+        log_file("frf/levels"),
     benchmark:
-        f"{RESULTS}/benchmarks/frf/levels.tsv"
+        benchmark_file("frf/levels")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -33,14 +35,16 @@ rule frf_curve:
         f"{RESULTS}/frf/{{gid}}/gamma_{{level}}.nc",
     wildcard_constraints:
         level=r"\d+",
+    params:
+        config=sections(*FORCED),
     threads: 1
     resources:
         mem_mb=scaled(1600),
         runtime=5,
     log:
-        f"{RESULTS}/logs/frf/{{gid}}_gamma_{{level}}.log",
+        log_file("frf/{gid}_gamma_{level}"),
     benchmark:
-        f"{RESULTS}/benchmarks/frf/{{gid}}_gamma_{{level}}.tsv"
+        benchmark_file("frf/{gid}_gamma_{level}")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -60,9 +64,9 @@ rule table3:
         mem_mb=scaled(300),
         runtime=5,
     log:
-        f"{RESULTS}/logs/frf/table3.log",
+        log_file("frf/table3"),
     benchmark:
-        f"{RESULTS}/benchmarks/frf/table3.tsv"
+        benchmark_file("frf/table3")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -87,9 +91,9 @@ rule optimum_figures:
         mem_mb=scaled(400),
         runtime=5,
     log:
-        f"{RESULTS}/logs/frf/optimum_figures.log",
+        log_file("frf/optimum_figures"),
     benchmark:
-        f"{RESULTS}/benchmarks/frf/optimum_figures.tsv"
+        benchmark_file("frf/optimum_figures")
     conda:
         "../../envs/ringdamper.yaml"
     script:

@@ -22,16 +22,17 @@ rule limits_study:
     wildcard_constraints:
         study="|".join(LIMIT_STUDIES),
     params:
+        config=sections(*SURROGATE),
         sizes=[20, 40, 60, 100],
     threads: 1
     resources:
         mem_mb=scaled(700),
         runtime=45,
     log:
-        f"{RESULTS}/logs/fidelity/limits_{{study}}.log",
+        log_file("fidelity/limits_{study}"),
     benchmark:
-        f"{RESULTS}/benchmarks/fidelity/limits_{{study}}.tsv"
+        benchmark_file("fidelity/limits_{study}")
     conda:
         "../../envs/ringdamper.yaml"
     script:
-        "../../scripts/method_limits.py"
+        "../../scripts/limits_study.py"

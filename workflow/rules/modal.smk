@@ -12,6 +12,8 @@ rule modal:
         modes_png=report(f"{RESULTS}/figures/modes_target_nd.png", category="Modal analysis",
                          caption="../report/modes_target_nd.rst"),
         modes_vtu=directory(f"{RESULTS}/modal/modes"),
+    params:
+        config=sections(*MODAL),
     threads: 1
     resources:
         mem_mb=scaled(3000),
@@ -19,9 +21,9 @@ rule modal:
     group:
         f"geometry_{DEFAULT_GID}"
     log:
-        f"{RESULTS}/logs/modal.log",
+        log_file("modal"),
     benchmark:
-        f"{RESULTS}/benchmarks/modal.tsv"
+        benchmark_file("modal")
     conda:
         "../../envs/ringdamper.yaml"
     script:

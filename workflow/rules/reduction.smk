@@ -4,6 +4,7 @@ rule reduced:
     output:
         f"{RESULTS}/geometry/{{gid}}/reduced.nc",
     params:
+        config=sections(*REDUCED),
         kappa=kappa_of,
     threads: 1
     resources:
@@ -12,9 +13,9 @@ rule reduced:
     group:
         "geometry_{gid}"
     log:
-        f"{RESULTS}/logs/reduced/{{gid}}.log",
+        log_file("reduced/{gid}"),
     benchmark:
-        f"{RESULTS}/benchmarks/reduced/{{gid}}.tsv"
+        benchmark_file("reduced/{gid}")
     conda:
         "../../envs/ringdamper.yaml"
     script:

@@ -13,18 +13,20 @@ rule optimum_surrogate_check:
                     caption="../report/optimum_check_table.rst"),
         figure=report(f"{RESULTS}/figures/optimum_surrogate_check.png", category="Optimum vs default",
                       caption="../report/optimum_surrogate_check.rst"),
+    params:
+        config=sections(*EXPLORATION),
     threads: 1
     resources:
         mem_mb=scaled(400),
         runtime=5,
     log:
-        f"{RESULTS}/logs/optimum_surrogate_check.log",
+        log_file("optimum_surrogate_check"),
     benchmark:
-        f"{RESULTS}/benchmarks/optimum_surrogate_check.tsv"
+        benchmark_file("optimum_surrogate_check")
     conda:
         "../../envs/ringdamper.yaml"
     script:
-        "../../scripts/optimum_check.py"
+        "../../scripts/optimum_surrogate_check.py"
 
 
 rule paper_comparison:
@@ -38,14 +40,16 @@ rule paper_comparison:
         csv=f"{RESULTS}/tables/paper_comparison.csv",
         html=report(f"{RESULTS}/tables/paper_comparison.html", category="Comparison with the paper",
                     caption="../report/paper_comparison.rst"),
+    params:
+        config=sections(*EXPLORATION, "sensitivity", "frf"),
     threads: 1
     resources:
         mem_mb=scaled(300),
         runtime=5,
     log:
-        f"{RESULTS}/logs/paper_comparison.log",
+        log_file("paper_comparison"),
     benchmark:
-        f"{RESULTS}/benchmarks/paper_comparison.tsv"
+        benchmark_file("paper_comparison")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -72,9 +76,9 @@ rule report_tables:
         mem_mb=scaled(300),
         runtime=5,
     log:
-        f"{RESULTS}/logs/report_tables.log",
+        log_file("report_tables"),
     benchmark:
-        f"{RESULTS}/benchmarks/report_tables.tsv"
+        benchmark_file("report_tables")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -98,7 +102,7 @@ rule study_charts:
                         caption=f"../report/{name}.rst") for name in STUDY_CHARTS},
     localrule: True
     log:
-        f"{RESULTS}/logs/study_charts.log",
+        log_file("study_charts"),
     params:
         folder=lambda wildcards, output: Path(output[0]).parent,
     conda:

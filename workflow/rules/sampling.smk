@@ -1,14 +1,16 @@
 rule samples:
     output:
         f"{RESULTS}/samples.csv",
+    params:
+        config=sections("sampling"),
     threads: 1
     resources:
         mem_mb=scaled(400),
         runtime=5,
     log:
-        f"{RESULTS}/logs/samples.log",
+        log_file("samples"),
     benchmark:
-        f"{RESULTS}/benchmarks/samples.tsv"
+        benchmark_file("samples")
     conda:
         "../../envs/ringdamper.yaml"
     script:

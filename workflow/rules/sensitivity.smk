@@ -13,14 +13,16 @@ rule sobol:
                      caption="../report/fig18_sobol_global.rst"),
         fig20=report(f"{RESULTS}/figures/fig20_sobol_local.png", category="Sensitivity",
                      caption="../report/fig20_sobol_local.rst"),
+    params:
+        config=sections(*SENSITIVITY),
     threads: 1
     resources:
         mem_mb=scaled(1000),
         runtime=5,
     log:
-        f"{RESULTS}/logs/sobol.log",
+        log_file("sobol"),
     benchmark:
-        f"{RESULTS}/benchmarks/sobol.tsv"
+        benchmark_file("sobol")
     conda:
         "../../envs/ringdamper.yaml"
     script:

@@ -6,6 +6,7 @@ rule static:
         vtu=f"{RESULTS}/geometry/{{gid}}/static.vtu",
         mesh=f"{RESULTS}/geometry/{{gid}}/mesh.vtu",
     params:
+        config=sections(*STATIC),
         kappa=kappa_of,
     threads: 1
     resources:
@@ -14,9 +15,9 @@ rule static:
     group:
         "geometry_{gid}"
     log:
-        f"{RESULTS}/logs/static/{{gid}}.log",
+        log_file("static/{gid}"),
     benchmark:
-        f"{RESULTS}/benchmarks/static/{{gid}}.tsv"
+        benchmark_file("static/{gid}")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -36,9 +37,9 @@ rule static_maps:
         mem_mb=scaled(600),
         runtime=5,
     log:
-        f"{RESULTS}/logs/static_maps.log",
+        log_file("static_maps"),
     benchmark:
-        f"{RESULTS}/benchmarks/static_maps.tsv"
+        benchmark_file("static_maps")
     conda:
         "../../envs/ringdamper.yaml"
     script:

@@ -26,74 +26,81 @@ rule study_reduced:
     output:
         STUDY_REDUCED,
     params:
+        config=sections(*REDUCED, "dnnm", "studies"),
         harmonics=study_harmonics(config),
     threads: 1
     resources:
         mem_mb=scaled(1000),
         runtime=5,
     log:
-        f"{RESULTS}/logs/studies/study_reduced.log",
+        log_file("studies/study_reduced"),
     benchmark:
-        f"{RESULTS}/benchmarks/studies/study_reduced.tsv"
+        benchmark_file("studies/study_reduced")
     conda:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_reduced.py"
 
 
-rule hub_calibration:
+rule study_hub_calibration:
     output:
         f"{STUDIES}/hub_calibration.yaml",
+    params:
+        config=sections(*STUDY),
     threads: 1
     resources:
         mem_mb=scaled(700),
         runtime=5,
     log:
-        f"{RESULTS}/logs/studies/hub_calibration.log",
+        log_file("studies/hub_calibration"),
     benchmark:
-        f"{RESULTS}/benchmarks/studies/hub_calibration.tsv"
+        benchmark_file("studies/hub_calibration")
     conda:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_hub_calibration.py"
 
 
-rule mesh_convergence:
+rule study_mesh_convergence:
     output:
         f"{STUDIES}/mesh_convergence.csv",
+    params:
+        config=sections(*STUDY),
     threads: 1
     resources:
         mem_mb=scaled(3300),
         runtime=14,
     log:
-        f"{RESULTS}/logs/studies/mesh_convergence.log",
+        log_file("studies/mesh_convergence"),
     benchmark:
-        f"{RESULTS}/benchmarks/studies/mesh_convergence.tsv"
+        benchmark_file("studies/mesh_convergence")
     conda:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_mesh_convergence.py"
 
 
-rule reduction_convergence:
+rule study_reduction_convergence:
     output:
         csv=f"{STUDIES}/reduction_convergence.csv",
         table=f"{STUDIES}/reduction_convergence.md",
+    params:
+        config=sections(*STUDY),
     threads: 1
     resources:
         mem_mb=scaled(1000),
         runtime=22,
     log:
-        f"{RESULTS}/logs/studies/reduction_convergence.log",
+        log_file("studies/reduction_convergence"),
     benchmark:
-        f"{RESULTS}/benchmarks/studies/reduction_convergence.tsv"
+        benchmark_file("studies/reduction_convergence")
     conda:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_reduction_convergence.py"
 
 
-rule contact_calibration:
+rule study_contact_calibration:
     input:
         reduced=STUDY_REDUCED,
         resonance=f"{RESULTS}/modal/resonance.yaml",
@@ -102,21 +109,23 @@ rule contact_calibration:
         curves=f"{STUDIES}/contact_calibration/{{stage}}.npz",
     wildcard_constraints:
         stage="coarse|refine|harmonics_A|harmonics_B",
+    params:
+        config=sections(*STUDY),
     threads: 2
     resources:
         mem_mb=scaled(2000),
         runtime=262,
     log:
-        f"{RESULTS}/logs/studies/contact_calibration_{{stage}}.log",
+        log_file("studies/contact_calibration_{stage}"),
     benchmark:
-        f"{RESULTS}/benchmarks/studies/contact_calibration_{{stage}}.tsv"
+        benchmark_file("studies/contact_calibration_{stage}")
     conda:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_contact_calibration.py"
 
 
-rule contact_calibration_figures:
+rule study_contact_figures:
     input:
         expand(f"{STUDIES}/contact_calibration/{{stage}}.npz", stage=("coarse", "refine", "harmonics_A")),
     output:
@@ -124,21 +133,23 @@ rule contact_calibration_figures:
                         category="Studies"),
         examples=report(f"{STUDIES}/contact_calibration/calibration_coarse_examples.png",
                         category="Studies"),
+    params:
+        config=sections(*STUDY),
     threads: 1
     resources:
         mem_mb=scaled(600),
         runtime=5,
     log:
-        f"{RESULTS}/logs/studies/contact_calibration_figures.log",
+        log_file("studies/contact_calibration_figures"),
     benchmark:
-        f"{RESULTS}/benchmarks/studies/contact_calibration_figures.tsv"
+        benchmark_file("studies/contact_calibration_figures")
     conda:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_contact_figures.py"
 
 
-rule contact_calibration_tables:
+rule study_contact_tables:
     input:
         expand(f"{STUDIES}/contact_calibration/{{stage}}.csv",
                stage=("coarse", "refine", "harmonics_A", "harmonics_B")),
@@ -149,16 +160,16 @@ rule contact_calibration_tables:
         mem_mb=scaled(600),
         runtime=5,
     log:
-        f"{RESULTS}/logs/studies/contact_calibration_tables.log",
+        log_file("studies/contact_calibration_tables"),
     benchmark:
-        f"{RESULTS}/benchmarks/studies/contact_calibration_tables.tsv"
+        benchmark_file("studies/contact_calibration_tables")
     conda:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_contact_tables.py"
 
 
-rule contact_state:
+rule study_contact_state:
     output:
         rings=f"{STUDIES}/contact_state/contact_state_rings.csv",
         designs=f"{STUDIES}/contact_state/contact_state_designs.csv",
@@ -167,42 +178,46 @@ rule contact_state:
         maps_best=f"{STUDIES}/contact_state/contact_state_maps_best.png",
         closure=f"{STUDIES}/contact_state/contact_state_free_closure.png",
         closure_table=f"{STUDIES}/contact_state/contact_state_free_closure.csv",
+    params:
+        config=sections(*STUDY),
     threads: 1
     resources:
         mem_mb=scaled(800),
         runtime=90,
     log:
-        f"{RESULTS}/logs/studies/contact_state.log",
+        log_file("studies/contact_state"),
     benchmark:
-        f"{RESULTS}/benchmarks/studies/contact_state.tsv"
+        benchmark_file("studies/contact_state")
     conda:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_contact_state.py"
 
 
-rule contact_state_backbone:
+rule study_contact_state_backbone:
     input:
         reduced=f"{RESULTS}/geometry/{DEFAULT_GID}/reduced.nc",
         resonance=f"{RESULTS}/modal/resonance.yaml",
     output:
         table=f"{STUDIES}/contact_state/contact_state_backbone.csv",
         figure=report(f"{STUDIES}/contact_state/contact_state_backbone.png", category="Studies"),
+    params:
+        config=sections(*STUDY),
     threads: 1
     resources:
         mem_mb=scaled(700),
         runtime=6,
     log:
-        f"{RESULTS}/logs/studies/contact_state_backbone.log",
+        log_file("studies/contact_state_backbone"),
     benchmark:
-        f"{RESULTS}/benchmarks/studies/contact_state_backbone.tsv"
+        benchmark_file("studies/contact_state_backbone")
     conda:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_contact_state_backbone.py"
 
 
-rule last_point:
+rule study_last_point:
     input:
         reduced=STUDY_REDUCED,
         static=f"{RESULTS}/geometry/{DEFAULT_GID}/static.nc",
@@ -211,14 +226,16 @@ rule last_point:
         campaign=f"{STUDIES}/last_point/campaign.nc",
         fine=f"{STUDIES}/last_point/fine.nc",
         figure=report(f"{STUDIES}/last_point/last_point_separation.png", category="Studies"),
+    params:
+        config=sections(*STUDY),
     threads: 1
     resources:
         mem_mb=scaled(1000),
         runtime=16,
     log:
-        f"{RESULTS}/logs/studies/last_point.log",
+        log_file("studies/last_point"),
     benchmark:
-        f"{RESULTS}/benchmarks/studies/last_point.tsv"
+        benchmark_file("studies/last_point")
     conda:
         "../../envs/ringdamper.yaml"
     script:

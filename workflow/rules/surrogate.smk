@@ -10,15 +10,16 @@ rule aggregate:
     output:
         f"{RESULTS}/campaign/dataset.nc",
     params:
+        config=sections(*DATASET),
         gids=geometry_ids(),
     threads: 1
     resources:
         mem_mb=scaled(400),
         runtime=5,
     log:
-        f"{RESULTS}/logs/aggregate.log",
+        log_file("aggregate"),
     benchmark:
-        f"{RESULTS}/benchmarks/aggregate.tsv"
+        benchmark_file("aggregate")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -30,14 +31,16 @@ rule kriging:
         f"{RESULTS}/campaign/dataset.nc",
     output:
         f"{RESULTS}/surrogate/kriging.nc",
+    params:
+        config=sections(*SURROGATE),
     threads: 2
     resources:
         mem_mb=scaled(1200),
         runtime=10,
     log:
-        f"{RESULTS}/logs/kriging.log",
+        log_file("kriging"),
     benchmark:
-        f"{RESULTS}/benchmarks/kriging.tsv"
+        benchmark_file("kriging")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -56,14 +59,16 @@ rule validation:
                        caption="../report/fig13_predicted_vs_computed.rst"),
         cases=report(f"{RESULTS}/figures/fig13_validation_backbones.png", category="Surrogates",
                      caption="../report/fig13_validation_backbones.rst"),
+    params:
+        config=sections(*SURROGATE),
     threads: 1
     resources:
         mem_mb=scaled(500),
         runtime=5,
     log:
-        f"{RESULTS}/logs/validation.log",
+        log_file("validation"),
     benchmark:
-        f"{RESULTS}/benchmarks/validation.tsv"
+        benchmark_file("validation")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -82,14 +87,16 @@ rule one_at_a_time:
                      caption="../report/fig15_kappa2.rst"),
         fig16=report(f"{RESULTS}/figures/fig16_kappa3.png", category="Design space",
                      caption="../report/fig16_kappa3.rst"),
+    params:
+        config=sections(*EXPLORATION),
     threads: 1
     resources:
         mem_mb=scaled(500),
         runtime=5,
     log:
-        f"{RESULTS}/logs/one_at_a_time.log",
+        log_file("one_at_a_time"),
     benchmark:
-        f"{RESULTS}/benchmarks/one_at_a_time.tsv"
+        benchmark_file("one_at_a_time")
     conda:
         "../../envs/ringdamper.yaml"
     script:
@@ -105,14 +112,16 @@ checkpoint optimum:
         grid=f"{RESULTS}/surrogate/grid.nc",
         figure=report(f"{RESULTS}/figures/fig17_envelopes.png", category="Design space",
                       caption="../report/fig17_envelopes.rst"),
+    params:
+        config=sections(*EXPLORATION),
     threads: 1
     resources:
         mem_mb=scaled(800),
         runtime=5,
     log:
-        f"{RESULTS}/logs/optimum.log",
+        log_file("optimum"),
     benchmark:
-        f"{RESULTS}/benchmarks/optimum.tsv"
+        benchmark_file("optimum")
     conda:
         "../../envs/ringdamper.yaml"
     script:

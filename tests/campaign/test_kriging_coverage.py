@@ -1,4 +1,4 @@
-"""Calibrated Kriging variance (ringdamper.campaign.kriging, *variance calibration*) against oracles.
+"""Calibrated Kriging variance (ringdamper.campaign.kriging.gp, *variance calibration*) against oracles.
 
 * Brute force: the factor ψ from the analytic leave-one-out formulas equals the one from N refits
   without each point (fixed hyperparameters).
@@ -13,6 +13,7 @@ import pytest
 from scipy.stats import qmc
 
 from ringdamper.campaign import kriging as K
+from ringdamper.campaign.kriging import gp
 
 from .test_kriging import campaign_dataset
 
@@ -23,7 +24,7 @@ def gp_path(n, m, seed):
     """Training (n, LHS) and test (m, uniform) inputs in [-1, 1]^3 and one joint sample path."""
     rng = np.random.default_rng(seed)
     x = np.vstack([2 * qmc.LatinHypercube(d=3, rng=rng).random(n) - 1, rng.uniform(-1, 1, (m, 3))])
-    R = K.correlation("matern52", K._scaled_d2(K._squared_differences(x, x), np.full(3, SCALE)))
+    R = gp.correlation("matern52", gp._scaled_d2(gp._squared_differences(x, x), np.full(3, SCALE)))
     y = np.linalg.cholesky(R + 1e-10 * np.eye(len(x))) @ rng.standard_normal(len(x))
     return x[:n], y[:n], x[n:], y[n:]
 

@@ -1,0 +1,163 @@
+"""The campaign's surrogates: one Kriging model per (output, modal amplitude) → ``kriging.nc`` (paper §3.2).
+
+Each model is fitted by :func:`.fit.fit_model` on the geometries the training mask allows at that
+amplitude; it stores θ, ν, β, σ, the maximised log-likelihood ℓ, the leave-one-out residuals
+eᵢ = yᵢ - ŷ₋ᵢ(xᵢ) and the variance factor ψ of :mod:`.gp`, and the predictivity coefficient
+
+    Q² = 1 - Σeᵢ² / Σ(yᵢ - ȳ)²     (eᵢ with fixed hyperparameters, Dubrule 1983).
+
+A model is Gaussian-process (status 0), constant (constant data, status 1) or not fitted (fewer than
+``min_training`` usable geometries, status 2). The models are independent fits, each seeded by the
+settings alone, so the process pool that runs them side by side does not change them. Layout of
+``kriging.nc``: docs/surrogate.md.
+"""
+
+from __future__ import annotations
+
+import logging
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy as np
+import xarray as xr
+
+from ...io import variable
+from .fit import fit_model
+from .gp import q2
+from .settings import check_settings
+
+log = logging.getLogger(__package__)  # one logger for the package: ringdamper.campaign.kriging
+
+OUTPUTS = ("q_res_z", "omega0", "zeta", "gamma")
+PARAMETERS = ("kappa1", "kappa2", "kappa3")
+STATUS_GP, STATUS_CONSTANT, STATUS_UNFITTED = 0, 1, 2
+STATUS_MEANINGS = "gaussian_process constant_data too_few_training_points"
+
+
+def _training_mask(dataset: xr.Dataset, mask) -> np.ndarray:
+    shape = (dataset.sizes["geometry"], dataset.sizes["amplitude"])
+    if mask is None:
+        return np.ones(shape, dtype=bool)
+    if isinstance(mask, xr.DataArray):
+        mask = mask.transpose("geometry", *[d for d in ("amplitude",) if d in mask.dims]).values
+    mask = np.asarray(mask, dtype=bool)
+    if mask.shape == shape[:1]:
+        mask = np.repeat(mask[:, None], shape[1], axis=1)
+    if mask.shape != shape:
+        raise ValueError(f"mask has shape {mask.shape}; expected (geometry,) = {shape[:1]} or (geometry, amplitude) = {shape}")
+    return mask
+
+
+def _check_inputs(dataset: xr.Dataset, outputs) -> np.ndarray:
+    if not {"geometry", "amplitude"} <= set(dataset.dims):
+        raise ValueError(f"dataset dims are {tuple(dataset.dims)}; expected (geometry, amplitude)")
+    missing = [k for k in (*PARAMETERS, *outputs) if k not in dataset.variables]
+    if missing:
+        raise ValueError(f"dataset lacks {missing}; needs coords {PARAMETERS} and data vars {tuple(outputs)}")
+    kappa = np.column_stack([dataset[k].values for k in PARAMETERS]).astype(float)
+    if not np.all(np.isfinite(kappa)) or np.abs(kappa).max() > 1.0:
+        raise ValueError("dataset kappa1..3 must be finite and within [-1, 1]")
+    return kappa
+
+
+def _fit_task(task):
+    """:func:`fit_model` of one ``(x, y, settings, name)`` (a top-level function: process pools pickle it)."""
+    return fit_model(*task)
+
+
+def _fit_all(tasks: list, workers: int) -> list:
+    """:func:`fit_model` of every task, in order, on ``workers`` processes (each fit is seeded by the
+    settings alone, so the models do not depend on the number of workers)."""
+    if workers <= 1 or len(tasks) < 2:
+        return [_fit_task(t) for t in tasks]
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        return list(pool.map(_fit_task, tasks, chunksize=max(1, len(tasks) // (4 * workers))))
+
+
+def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict | None = None,
+                 workers: int = 1) -> xr.Dataset:
+    """One Kriging model per (output, amplitude) on the usable geometries → the ``kriging.nc`` Dataset.
+
+    dataset: dims (geometry, amplitude), coords kappa1..3 (on geometry), data vars ``outputs``.
+    mask: bool (geometry,) or (geometry, amplitude), True where a point may train (default all): the
+        caller excludes validation geometries and failed solves; a NaN/inf output under the mask is an
+        error naming the output and amplitude. Geometries never used are not stored.
+    settings: the ``surrogate`` section; keys and defaults in DEFAULT_SETTINGS (see check_settings).
+    workers: processes fitting the models side by side (the result does not depend on it).
+    Layout of the result: docs/surrogate.md.
+    """
+    s = check_settings(settings)
+    outputs = tuple(outputs)
+    kappa = _check_inputs(dataset, outputs)
+    use = _training_mask(dataset, mask)
+    used = use.any(axis=1)  # geometries that train at least one model: the only ones stored
+    dataset, kappa, use = dataset.isel(geometry=used), kappa[used], use[used]
+    n_amp, n_out, dim = dataset.sizes["amplitude"], len(outputs), len(PARAMETERS)
+    scale = np.full((n_out, n_amp, dim), np.nan)
+    nugget, loglik, q2s = (np.full((n_out, n_amp), np.nan) for _ in range(3))
+    status = np.full((n_out, n_amp), STATUS_UNFITTED, dtype=np.int8)
+    n_train = use.sum(axis=0)
+    values = {out: dataset[out].transpose("geometry", "amplitude").values.astype(float) for out in outputs}
+    tasks, keys = [], []
+    for out in outputs:
+        for ia in range(n_amp):
+            rows = np.flatnonzero(use[:, ia])
+            amp = float(dataset["amplitude"].values[ia])
+            if len(rows) < s["min_training"]:
+                log.warning("%s at amplitude %.4g: %d usable geometries < surrogate.min_training = %d; not fitted",
+                            out, amp, len(rows), s["min_training"])
+                continue
+            tasks.append((kappa[rows], values[out][rows, ia], s, f"{out} at amplitude[{ia}] = {amp:.6g}"))
+            keys.append((out, ia, rows))
+    fitted = {(out, ia): (rows, *fit) for (out, ia, rows), fit in zip(keys, _fit_all(tasks, workers))}
+    per_output = {}
+    for io, out in enumerate(outputs):
+        beta, sigma, factor = np.full(n_amp, np.nan), np.full(n_amp, np.nan), np.full(n_amp, np.nan)
+        loo = np.full((n_amp, len(kappa)), np.nan)
+        train = np.where(use, values[out], np.nan).T
+        for ia in range(n_amp):
+            if (out, ia) not in fitted:
+                continue
+            rows, model, ll = fitted[out, ia]
+            status[io, ia] = STATUS_CONSTANT if model.is_constant else STATUS_GP
+            scale[io, ia], nugget[io, ia], loglik[io, ia] = model.scale, model.nugget, ll
+            beta[ia], sigma[ia], factor[ia] = model.beta, model.sigma, model.loo_variance_factor()
+            loo[ia, rows] = model.loo_residuals()
+            q2s[io, ia] = q2(model.y, loo[ia, rows])
+        units, long_name = dataset[out].attrs.get("units", "1"), dataset[out].attrs.get("long_name", out)
+        per_output[out] = variable(("amplitude", "geometry"), train, units, f"training values of {long_name} (NaN: not used)")
+        per_output[f"{out}_beta"] = variable("amplitude", beta, units, f"Kriging constant trend of {out}")
+        per_output[f"{out}_sigma"] = variable("amplitude", sigma, units, f"Kriging process standard deviation of {out}")
+        per_output[f"{out}_variance_factor"] = variable(
+            "amplitude", factor, "1", f"leave-one-out calibration factor of the predictive variance of {out}")
+        per_output[f"{out}_loo_residual"] = variable(("amplitude", "geometry"), loo, units,
+                                                     f"leave-one-out residual of {out} (fixed hyperparameters)")
+    amp_attrs = {"units": "1", "long_name": "modal amplitude", **dataset["amplitude"].attrs}
+    geometry = dataset["geometry"].values if "geometry" in dataset.coords else np.arange(len(kappa))
+    data = {
+        "kappa": variable(("geometry", "parameter"), kappa, "1", "normalised shape parameters of the training geometries"),
+        "training_mask": variable(("amplitude", "geometry"), use.T.astype(np.int8), "1",
+                                  "1 where the geometry trains the models of that amplitude"),
+        "kernel": variable(("output", "amplitude"), np.full((n_out, n_amp), s["kernel"], dtype=object), "1",
+                           "correlation function of the model"),
+        "scale": variable(("output", "amplitude", "parameter"), scale, "1", "correlation length theta per parameter"),
+        "nugget": variable(("output", "amplitude"), nugget, "1", "nugget factor (fraction of sigma^2)"),
+        "status": variable(("output", "amplitude"), status, "1", "model status", flag_values=[0, 1, 2],
+                           flag_meanings=STATUS_MEANINGS),
+        "n_training": variable(("output", "amplitude"), np.tile(n_train, (n_out, 1)), "1",
+                               "number of training points of the model"),
+        "log_likelihood": variable(("output", "amplitude"), loglik, "1", "maximised reduced log-likelihood"),
+        "q2": variable(("output", "amplitude"), q2s, "1", "leave-one-out predictivity coefficient Q2"),
+        **per_output,
+    }
+    coords = {
+        "output": variable("output", np.array(outputs, dtype=object), "1", "Kriging output"),
+        "amplitude": ("amplitude", dataset["amplitude"].values, amp_attrs),
+        "parameter": variable("parameter", np.array(PARAMETERS, dtype=object), "1", "shape parameter"),
+        "geometry": variable("geometry", geometry, "1", "training geometry"),
+    }
+    import openturns as ot
+
+    attrs = {"openturns_version": ot.__version__, "kernel": s["kernel"], "n_starts": s["n_starts"],
+             "seed": s["seed"], "scale_bounds": list(s["scale_bounds"]), "scale_bounds_unit": "kappa-domain width (2)",
+             "nugget_setting": list(np.atleast_1d(s["nugget"])), "min_training": s["min_training"]}
+    return xr.Dataset(data, coords=coords, attrs=attrs)

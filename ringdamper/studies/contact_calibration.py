@@ -280,49 +280,6 @@ def run_stage(config: dict, reduced_path, target_hz: float, stage: str, processe
     return run_many(config, reduced_path, target_hz, stage_trials(config, stage), alpha, processes)
 
 
-def contact_states(backbone, contacts) -> dict:
-    """Per grid point of an EPMC ``backbone``: number of pairs that slip (|T_j| reaches μN in some
-    direction during the period), that open (N = 0 at some sample), and the mean-free ring drift."""
-    from ringdamper.nonlinear.friction import contact_aft
-
-    model = backbone.model
-    n = backbone.alpha.size
-    out = {k: np.full(n, -1) for k in ("n_slip", "n_slip_t1", "n_slip_t2", "n_open", "n_fully_open")}
-    for i in range(n):
-        if not np.isfinite(backbone.omega[i]):
-            continue
-        d = backbone.d[i].reshape(model.C, model.npairs, 3).transpose(1, 2, 0)
-        aft = contact_aft(contacts, model.fourier, d, jacobian=False)
-        N, T = aft.normal, aft.tangential                      # (np, Nt), (np, 2, Nt)
-        limit = contacts.mu[:, None] * N
-        slip_dir = np.any((np.abs(T) >= limit[:, None, :] * (1 - 1e-9)) & (N[:, None, :] > 0), axis=2)
-        slip = np.any(slip_dir, axis=1)
-        opened = np.any(N <= 0, axis=1)
-        out["n_slip"][i] = int(slip.sum())
-        out["n_slip_t1"][i], out["n_slip_t2"][i] = (int(v) for v in slip_dir.sum(axis=0))
-        out["n_open"][i] = int(opened.sum())
-        out["n_fully_open"][i] = int(np.all(N <= 0, axis=1).sum())
-    return out
-
-
-def diagnose(ring: DefaultRing, contact: dict, H: int, alpha):
-    """EPMC backbone of the default ring with per-point contact states (for the study's figures)."""
-    from ringdamper.nonlinear.stage import contacts_from_static, structure_from_reduced, target_stuck_frequency
-    from ringdamper.nonlinear.eebm import eebm
-    from ringdamper.nonlinear.epmc import epmc
-
-    cfg = ring.config["dnnm"]
-    static = ring.static(contact)
-    contacts = contacts_from_static(static, contact, cfg["friction_law"])
-    structure = structure_from_reduced(ring.reduced, H)
-    w_stuck = target_stuck_frequency(structure, contacts, ring.target_hz)
-    a = np.geomspace(*alpha[:2], int(alpha[2]))
-    bb = epmc(structure, contacts, a, H=H, nt=max(cfg["n_time_samples"], 16 * H),
-              omega_target=w_stuck)
-    res = eebm(bb, zeta_s=cfg["structural_damping_ratio"])
-    return bb, res, contact_states(bb, contacts), w_stuck
-
-
 def save_curves(results, path) -> None:
     """Backbone curves of a stage as one .npz (arrays stacked per trial; NaN for failed trials)."""
     n = max((len(c["alpha"]) for _, c in results if c is not None), default=0)
@@ -333,8 +290,6 @@ def save_curves(results, path) -> None:
     for key in ("friction_coefficient", "normal_stiffness_per_area", "tangential_stiffness_per_area", "H"):
         out[key] = np.array([r.get(key, np.nan) for r, _ in results], dtype=float)
     np.savez_compressed(path, **out)
-
-
 
 
 def plot_backbones(curves: list[tuple[str, dict]], path, q_max: float = 1.0e-3) -> None:

@@ -185,21 +185,18 @@ class DefaultRing:
         return static_dataset(self.model, result, prob, (0.0, 0.0, 0.0), cfg["operation"]["speed_rpm"])
 
 
-def run_trial(ring: DefaultRing, contact: dict, H: int, alpha, nt: int | None = None):
+def run_trial(ring: DefaultRing, contact: dict, H: int, alpha):
     """One backbone of the default ring on the α grid ``alpha`` = (first, last, count): returns
     (row dict, dnnm dataset)."""
-    from ringdamper.nonlinear.stage import contacts_from_static, run_dnnm, structure_from_reduced, target_stuck_frequency
+    from ringdamper.nonlinear.stage import default_normalisation, run_dnnm
 
     t0 = time.perf_counter()
     cfg = copy.deepcopy(ring.config)
     cfg["contact"] = dict(contact)
     cfg["dnnm"].update(n_harmonics=int(H), amplitude_min=alpha[0], amplitude_max=alpha[1],
                        n_amplitudes=int(alpha[2]))
-    if nt is not None:
-        cfg["dnnm"]["n_time_samples"] = int(nt)
     static = ring.static(cfg["contact"])
-    contacts = contacts_from_static(static, cfg["contact"], cfg["dnnm"]["friction_law"])
-    w_stuck = target_stuck_frequency(structure_from_reduced(ring.reduced, 1), contacts, ring.target_hz)
+    w_stuck = default_normalisation(ring.reduced, static, cfg, ring.target_hz)["omega_stuck_default_rad_s"]
     ds = run_dnnm(ring.reduced, static, cfg, ring.target_hz, w_stuck)
     m = backbone_metrics(ds.q_res_z.values, 2 * np.pi * ds.frequency.values, ds.zeta.values,
                          ds.status.values, w_stuck)

@@ -35,6 +35,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from ringdamper.campaign.summary import log_q_zeta_max
 from ringdamper.nonlinear.normalisation import PAPER_NORMALISED_FREQUENCY, normalised_frequency
 from ringdamper.nonlinear.continuation import usable_status
 
@@ -82,18 +83,6 @@ class Metrics:
         return d
 
 
-def _peak(logq: np.ndarray, z: np.ndarray, i: int) -> tuple[float, float]:
-    """Vertex of the parabola through points i−1, i, i+1 of (ln q, ζ) (the discrete peak at the ends)."""
-    if i == 0 or i == len(z) - 1:
-        return float(np.exp(logq[i])), float(z[i])
-    x, y = logq[i - 1:i + 2], z[i - 1:i + 2]
-    a, b, c = np.polyfit(x - x[1], y, 2)
-    if a >= 0:
-        return float(np.exp(logq[i])), float(z[i])
-    xv = float(np.clip(-b / (2 * a), x[0] - x[1], x[2] - x[1]))
-    return float(np.exp(x[1] + xv)), float(c - b * b / (4 * a))
-
-
 def backbone_metrics(q, omega, zeta, status, omega_stuck: float, q_max: float = None) -> Metrics:
     """Summarise a backbone given per grid point |q_res,z| (m), ω (rad/s), ζ and status; the
     peak, drop and shape rules are taken over |q_res,z| ≤ ``q_max`` (default :data:`Q_MAX`), the
@@ -119,7 +108,7 @@ def backbone_metrics(q, omega, zeta, status, omega_stuck: float, q_max: float = 
     q, omega, zeta = q[order], omega[order], zeta[order]
     logq = np.log(q)
     i = int(np.argmax(zeta))
-    q_star, z_star = _peak(logq, zeta, i)
+    q_star, z_star = log_q_zeta_max(q, zeta)
     ratio = omega / omega_stuck
     drop_star = 1.0 - float(np.interp(np.log(q_star), logq, ratio))
     above = np.flatnonzero(zeta > 0.01 * zeta[i])

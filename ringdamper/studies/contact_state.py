@@ -39,6 +39,7 @@ import xarray as xr
 
 from ringdamper.campaign import sampling
 from ringdamper.config import ring_axial_center
+from ringdamper.static.closure import pair_closure, station_means
 
 # the paper's seven rings of Figs. 6, 11, 19 (the campaign's reference rings but kappa3 = +1)
 REFERENCE_RINGS = {label: k for label, k in sampling.REFERENCE_RINGS.items() if label != "kappa3=+1"}
@@ -236,21 +237,13 @@ def free_closure(config: dict, clearance: float) -> tuple[xr.Dataset, xr.Dataset
             underside_imprint(model, u, cfg["geometry"]["disk"]["contact_radius"]))
 
 
-def station_means(static: xr.Dataset, coordinate: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(distinct values of ``coordinate`` (per pair, rounded to 1e-9), mean closure d_n = initial gap
-    − gap (m) of the pairs at each)."""
-    closure = static.initial_gap.values - static.gap.values
-    stations, station = np.unique(np.round(coordinate, 9), return_inverse=True)
-    return stations, np.bincount(station, closure) / np.bincount(station)
-
-
 def closure_summary(static: xr.Dataset, half_angle: float) -> dict:
     """Of an all-open (:func:`free_closure`) state: the mean closure (the clearance at which the ring
     would just touch on average), the spread of the means of its axial stations (the arm's taper) and
     its sector-periodic part, the mean of the boundary station minus that of the centre station
     (> 0: the boundaries close more, so they carry N0 and the centre opens first). All in m."""
     s = np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle
-    closure = static.initial_gap.values - static.gap.values
+    closure = pair_closure(static)
     _, theta_means = station_means(static, s)
     _, z_means = station_means(static, static.z.values)
     return {"mean_closure": float(closure.mean()), "axial_spread": float(np.ptp(z_means)),

@@ -5,7 +5,8 @@ import logging
 import yaml
 
 from ringdamper.io import log_to, read_netcdf, write_netcdf
-from ringdamper.studies.last_point import onset_of_separation, plot, run_study
+from ringdamper.plots.last_point import plot_separation
+from ringdamper.studies.last_point import onset_of_separation, run_study
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log_to(sm.log[0])
@@ -17,4 +18,4 @@ for name, ds in traces.items():
     write_netcdf(ds, sm.output[name], sm.config, sm.rule)
     logging.getLogger(__name__).info("%s trace: first pair lifts off at alpha = %.4g", name,
                                      onset_of_separation(ds))
-plot(traces, sm.output.figure)
+plot_separation(traces, onset_of_separation(traces["fine"]), sm.output.figure)

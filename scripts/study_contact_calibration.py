@@ -6,7 +6,7 @@ The trials run in spawned worker processes, which import this file again: the wo
 import yaml
 
 from ringdamper.io import log_to, write_csv
-from ringdamper.studies.contact_calibration import run_stage, save_curves
+from ringdamper.studies.contact_calibration.dataset import run_stage, save_curves
 
 if __name__ == "__main__":
     sm = snakemake  # noqa: F821 (injected by Snakemake)

@@ -3,7 +3,7 @@ table and figure."""
 import yaml
 
 from ringdamper.io import log_to, write_csv
-from ringdamper.studies.contact_calibration import plot_backbones
+from ringdamper.plots.calibration import plot_backbones
 from ringdamper.studies.contact_state import backbone_sweep
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)

@@ -273,12 +273,11 @@ def underside_imprint(model, u: np.ndarray, radius: float) -> xr.Dataset:
 
 
 def backbone_sweep(config: dict, reduced_path, target_hz: float) -> list[tuple[dict, dict]]:
-    """Default-ring backbones (``contact_calibration.run_trial``, its α grid) for each clearance of
-    ``studies.contact_state.backbone_clearance`` at H = 1, with the configured contact and with each
-    friction coefficient of ``backbone_friction``: [(row, curve)]. The reduced model is contact- and
+    """Default-ring backbones (``contact_calibration.trial.run_trial``, its α grid) for each
+    clearance of ``studies.contact_state.backbone_clearance`` at H = 1, with the configured contact
+    and with each friction coefficient of ``backbone_friction``: [(row, curve)]. The reduced model is contact- and
     clearance-free, so the default ring's reduced.nc serves every trial."""
-    from ringdamper.nonlinear.normalisation import normalised_frequency
-    from ringdamper.studies.contact_calibration import DefaultRing, run_trial
+    from ringdamper.studies.contact_calibration.trial import DefaultRing, run_trial, trial_curve
 
     grid = config["studies"]["contact_state"]
     alpha = config["studies"]["contact_calibration"]["amplitudes"]
@@ -289,8 +288,5 @@ def backbone_sweep(config: dict, reduced_path, target_hz: float) -> list[tuple[d
         for mu in grid["backbone_friction"]:
             contact = dict(cfg["contact"], friction_coefficient=float(mu))
             row, ds = run_trial(ring, contact, 1, alpha)
-            curve = {"q": ds.q_res_z.values, "zeta": ds.zeta.values, "gamma": ds.gamma.values,
-                     "omega0": normalised_frequency(2 * np.pi * ds.frequency.values, ds.attrs["omega_stuck"]),
-                     "status": ds.status.values}
-            out.append(({"radial_clearance": float(clearance), **row}, curve))
+            out.append(({"radial_clearance": float(clearance), **row}, trial_curve(ds)))
     return out

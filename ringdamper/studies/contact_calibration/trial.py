@@ -5,7 +5,7 @@ static state's preload and the :mod:`.metrics` of the backbone).
 The reduced model (contact-free, independent of the contact parameters) is read once per
 :class:`DefaultRing`; the static contact state is re-solved for every trial (N0 depends on kn
 through the penalty law), then the EPMC backbone + E-EBM of ``nonlinear.stage.run_dnnm`` on the
-study's α grid, normalised by the trial's own stuck frequency
+study's α grid, normalised by the stuck frequency of the trial's own contact parameters
 (``nonlinear.stage.default_normalisation``).
 """
 
@@ -92,7 +92,8 @@ def run_trial(ring: DefaultRing, contact: dict, H: int, alpha):
 
 def trial_curve(ds) -> dict:
     """The backbone of a trial's dnnm dataset as arrays over α: ``alpha``, ``q`` (|q_res,z|, m),
-    ``omega0`` (2.195 ω / ω_stuck of the trial), ``zeta``, ``gamma`` (N) and ``status``."""
+    ``omega0`` (2.195 ω / ω_stuck, ω_stuck the linearised stuck frequency of the backbone, the
+    dataset's ``omega_stuck``), ``zeta``, ``gamma`` (N) and ``status``."""
     return {"alpha": ds.amplitude.values, "q": ds.q_res_z.values,
             "omega0": normalised_frequency(2 * np.pi * ds.frequency.values, ds.attrs["omega_stuck"]),
             "zeta": ds.zeta.values, "gamma": ds.gamma.values, "status": ds.status.values}

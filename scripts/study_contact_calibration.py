@@ -7,7 +7,7 @@ import yaml
 
 from ringdamper.io import write_csv
 from ringdamper.logs import to_file
-from ringdamper.studies.contact_calibration import run_stage, save_curves
+from ringdamper.studies.contact_calibration.dataset import run_stage, save_curves
 
 if __name__ == "__main__":
     sm = snakemake  # noqa: F821 (injected by Snakemake)

@@ -2,8 +2,11 @@
 from pathlib import Path
 
 from ringdamper.logs import to_file
-from ringdamper.studies.contact_calibration import figures
+from ringdamper.plots.calibration import plot_backbones
+from ringdamper.studies.contact_calibration.dataset import figure_curves
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = to_file(sm.log[0])
-figures(sm.params.config, Path(sm.input[0]).parent, sm.output.backbone, sm.output.examples)
+backbones, examples = figure_curves(sm.params.config, Path(sm.input[0]).parent)
+plot_backbones(backbones, sm.output.backbone)
+plot_backbones(examples, sm.output.examples)

@@ -4,7 +4,7 @@ import yaml
 
 from ringdamper.io import write_csv
 from ringdamper.logs import to_file
-from ringdamper.studies.contact_calibration import plot_backbones
+from ringdamper.plots.calibration import plot_backbones
 from ringdamper.studies.contact_state import backbone_sweep
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)

@@ -5,7 +5,8 @@ import yaml
 
 from ringdamper.io import read_netcdf, write_netcdf
 from ringdamper.logs import to_file
-from ringdamper.studies.last_point import onset_of_separation, plot, run_study
+from ringdamper.plots.last_point import plot_separation
+from ringdamper.studies.last_point import onset_of_separation, run_study
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = to_file(sm.log[0])
@@ -15,6 +16,5 @@ traces = run_study(read_netcdf(sm.input.reduced, "reduced"), read_netcdf(sm.inpu
                    sm.params.config, target_hz)
 for name, ds in traces.items():
     write_netcdf(ds, sm.output[name], sm.params.config)
-    log.info("%s trace: first pair lifts off at alpha = %.4g", name,
-             onset_of_separation(ds))
-plot(traces, sm.output.figure)
+    log.info("%s trace: first pair lifts off at alpha = %.4g", name, onset_of_separation(ds))
+plot_separation(traces, onset_of_separation(traces["fine"]), sm.output.figure)

@@ -28,9 +28,9 @@ import pandas as pd
 
 from ringdamper.nonlinear.epmc import epmc
 from ringdamper.nonlinear.structure import Structure
-from ringdamper.studies.epmc_time_domain import (compare, damper_poles, frequency_rise, plot,
-                                                 return_check, step_convergence,
-                                                 stuck_frequency)
+from ringdamper.plots.epmc_time_domain import plot_comparison
+from ringdamper.studies.epmc_time_domain import (compare, damper_poles, frequency_rise, return_check,
+                                                 step_convergence, stuck_frequency)
 from tests.nonlinear.systems import jenkins_chain
 from tests.nonlinear.test_continuation_family import (ISSUE_GRID, OPTIONS, SEEDS, chain_grid,
                                                      issue_chain)
@@ -73,7 +73,7 @@ def main():
         logging.info("seed %d: %.1f s CPU", seed, time.process_time() - t0)
     pd.concat([t.assign(seed=s) for s, t in tables.items()]).to_csv(
         out / "comparison.csv", index=False, float_format="%.8g")
-    plot(tables, args.figure)
+    plot_comparison(tables, args.figure)
     st, c = jenkins_chain(SPURIOUS)
     pd.concat([return_check(lambda H: jenkins_chain(SPURIOUS, H=H)[0], c, chain_grid(st, c), H)
                for H in (3, 15)]).to_csv(out / f"return_{SPURIOUS}.csv", index=False,

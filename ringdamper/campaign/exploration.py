@@ -28,6 +28,7 @@ import xarray as xr
 from scipy.optimize import minimize
 
 from ..io import variable
+from .summary import grid_zeta_max
 
 
 BACKBONE_OUTPUTS = ("q_res_z", "omega0", "zeta", "gamma")
@@ -96,13 +97,12 @@ def one_at_a_time(i: int, n: int) -> np.ndarray:
     return X
 
 
-def zeta_max(bb: Backbones, q_max: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
-    """Maximum of the predicted damping ratio along each backbone where |q_res,z| <= ``q_max``, and
-    the amplitude index where it is reached ((point,) arrays). The maximum of a piecewise-linear
-    backbone lies on a grid node, so it is the maximum over the alpha nodes in that range."""
-    z = bb.mean["zeta"] if np.isinf(q_max) else np.where(bb.mean["q_res_z"] <= q_max, bb.mean["zeta"], -np.inf)
-    j = np.argmax(z, axis=0)
-    return np.take_along_axis(z, j[None], 0)[0], j
+def predicted_zeta_max(bb: Backbones, q_max: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`~ringdamper.campaign.summary.grid_zeta_max` of the Kriging-predicted mean backbones:
+    the largest predicted ζ over the α nodes where the predicted |q_res,z| <= ``q_max``, and the
+    amplitude index where it is reached ((point,) arrays). A prediction has no status, so every
+    node counts, and the maximum of a piecewise-linear backbone lies on a node."""
+    return grid_zeta_max(bb.mean["q_res_z"], bb.mean["zeta"], q_max)
 
 
 def resonant_amplitude(bb: Backbones, gamma: float) -> np.ndarray:
@@ -147,8 +147,8 @@ def explore_grid(surrogate, X, levels, forcing: float, q_max: float = np.inf,
         for k, name in enumerate(ENVELOPE_OUTPUTS):
             lower[name] = np.fmin(lower[name], np.nanmin(values[k], axis=-1, initial=np.inf))
             upper[name] = np.fmax(upper[name], np.nanmax(values[k], axis=-1, initial=-np.inf))
-        zmax[s:s + chunk] = zeta_max(bb, q_max)[0]
-        zfull[s:s + chunk] = zeta_max(bb)[0]
+        zmax[s:s + chunk] = predicted_zeta_max(bb, q_max)[0]
+        zfull[s:s + chunk] = predicted_zeta_max(bb)[0]
         q_f[s:s + chunk] = resonant_amplitude(bb, forcing)
     for name in ENVELOPE_OUTPUTS:
         lower[name][~np.isfinite(lower[name])] = np.nan
@@ -175,7 +175,7 @@ def summary(surrogate, kappa, forcing: float, q_max: float = np.inf) -> dict:
     true maximum may lie beyond the grid), the linearised (smallest-amplitude) omega0 and the
     resonant amplitude at ``forcing``."""
     bb = backbones(surrogate, np.asarray(kappa, float)[None])
-    j = int(zeta_max(bb, q_max)[1][0])
+    j = int(predicted_zeta_max(bb, q_max)[1][0])
     out = {"zeta_max": float(bb.mean["zeta"][j, 0]), "zeta_max_std": float(bb.std["zeta"][j, 0]),
            "zeta_max_at_last_amplitude": j == bb.amplitude.size - 1,
            "amplitude_at_zeta_max": float(bb.amplitude[j])}
@@ -194,7 +194,7 @@ def find_optimum(surrogate, grid: GridExploration, forcing: float, n_grid: int, 
     h = 2.0 / (n_grid - 1)
 
     def neg_zeta_max(k, limit=q_max):
-        return -zeta_max(backbones(surrogate, k[None], ("q_res_z", "zeta"), with_std=False), limit)[0][0]
+        return -predicted_zeta_max(backbones(surrogate, k[None], ("q_res_z", "zeta"), with_std=False), limit)[0][0]
 
     def q_forced(k):
         q = resonant_amplitude(backbones(surrogate, k[None], ("q_res_z", "gamma"), with_std=False), forcing)[0]

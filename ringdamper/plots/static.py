@@ -6,7 +6,7 @@ import itertools
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ringdamper.studies.contact_state import station_means
+from ..static.closure import pair_closure, station_means
 
 
 def _surface_coords(ds):
@@ -120,7 +120,7 @@ def plot_free_closure(states: dict, configured: str, half_angle: float, path) ->
     fig, (ax, bx, cx) = plt.subplots(1, 3, figsize=(15, 4.2))
     static = states[configured][0]
     s = np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle
-    closure = 1e6 * (static.initial_gap.values - static.gap.values)
+    closure = 1e6 * pair_closure(static)
     z = np.round(1e3 * static.z.values, 3)
     for zv in np.unique(z):
         sel = np.flatnonzero(z == zv)

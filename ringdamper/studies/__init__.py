@@ -1,4 +1,8 @@
 """Studies that fix the model's choices, run by ``make studies`` into ``results/studies/``: the hub
 thickness calibration (:mod:`.hub_calibration`), the contact calibration (:mod:`.contact_calibration`),
-the mesh convergence (:mod:`.mesh_convergence`) and the reduction convergence
-(:mod:`.reduction_convergence`)."""
+the contact state of the reference rings (:mod:`.contact_state`), the mesh convergence
+(:mod:`.mesh_convergence`), the reduction convergence (:mod:`.reduction_convergence`) and the last
+grid amplitude (:mod:`.last_point`); with ``make fidelity``, the fidelity dials (:mod:`.fidelity`)
+and the methods' limits (:mod:`.method_limits`); by hand, the EPMC's time-domain check
+(:mod:`.epmc_time_domain`). A study returns its data (rows, datasets); the rule scripts draw its
+figures from them."""

@@ -39,6 +39,7 @@ import xarray as xr
 
 from ringdamper.campaign import sampling
 from ringdamper.config import ring_axial_center
+from ringdamper.static.closure import pair_closure, station_means
 
 # the paper's seven rings of Figs. 6, 11, 19 (the campaign's reference rings but kappa3 = +1)
 REFERENCE_RINGS = {label: k for label, k in sampling.REFERENCE_RINGS.items() if label != "kappa3=+1"}
@@ -236,21 +237,13 @@ def free_closure(config: dict, clearance: float) -> tuple[xr.Dataset, xr.Dataset
             underside_imprint(model, u, cfg["geometry"]["disk"]["contact_radius"]))
 
 
-def station_means(static: xr.Dataset, coordinate: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(distinct values of ``coordinate`` (per pair, rounded to 1e-9), mean closure d_n = initial gap
-    − gap (m) of the pairs at each)."""
-    closure = static.initial_gap.values - static.gap.values
-    stations, station = np.unique(np.round(coordinate, 9), return_inverse=True)
-    return stations, np.bincount(station, closure) / np.bincount(station)
-
-
 def closure_summary(static: xr.Dataset, half_angle: float) -> dict:
     """Of an all-open (:func:`free_closure`) state: the mean closure (the clearance at which the ring
     would just touch on average), the spread of the means of its axial stations (the arm's taper) and
     its sector-periodic part, the mean of the boundary station minus that of the centre station
     (> 0: the boundaries close more, so they carry N0 and the centre opens first). All in m."""
     s = np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle
-    closure = static.initial_gap.values - static.gap.values
+    closure = pair_closure(static)
     _, theta_means = station_means(static, s)
     _, z_means = station_means(static, static.z.values)
     return {"mean_closure": float(closure.mean()), "axial_spread": float(np.ptp(z_means)),
@@ -280,12 +273,11 @@ def underside_imprint(model, u: np.ndarray, radius: float) -> xr.Dataset:
 
 
 def backbone_sweep(config: dict, reduced_path, target_hz: float) -> list[tuple[dict, dict]]:
-    """Default-ring backbones (``contact_calibration.run_trial``, its α grid) for each clearance of
-    ``studies.contact_state.backbone_clearance`` at H = 1, with the configured contact and with each
-    friction coefficient of ``backbone_friction``: [(row, curve)]. The reduced model is contact- and
+    """Default-ring backbones (``contact_calibration.trial.run_trial``, its α grid) for each
+    clearance of ``studies.contact_state.backbone_clearance`` at H = 1, with the configured contact
+    and with each friction coefficient of ``backbone_friction``: [(row, curve)]. The reduced model is contact- and
     clearance-free, so the default ring's reduced.nc serves every trial."""
-    from ringdamper.nonlinear.normalisation import normalised_frequency
-    from ringdamper.studies.contact_calibration import DefaultRing, run_trial
+    from ringdamper.studies.contact_calibration.trial import DefaultRing, run_trial, trial_curve
 
     grid = config["studies"]["contact_state"]
     alpha = config["studies"]["contact_calibration"]["amplitudes"]
@@ -296,8 +288,5 @@ def backbone_sweep(config: dict, reduced_path, target_hz: float) -> list[tuple[d
         for mu in grid["backbone_friction"]:
             contact = dict(cfg["contact"], friction_coefficient=float(mu))
             row, ds = run_trial(ring, contact, 1, alpha)
-            curve = {"q": ds.q_res_z.values, "zeta": ds.zeta.values, "gamma": ds.gamma.values,
-                     "omega0": normalised_frequency(2 * np.pi * ds.frequency.values, ds.attrs["omega_stuck"]),
-                     "status": ds.status.values}
-            out.append(({"radial_clearance": float(clearance), **row}, curve))
+            out.append(({"radial_clearance": float(clearance), **row}, trial_curve(ds)))
     return out

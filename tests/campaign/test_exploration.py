@@ -3,7 +3,8 @@ non-monotone predicted curves, and the grids of the exploration."""
 import numpy as np
 import pytest
 
-from ringdamper.campaign.exploration import Backbones, at_levels, cube_grid, monotone, one_at_a_time, zeta_max
+from ringdamper.campaign.exploration import (Backbones, at_levels, cube_grid, monotone, one_at_a_time,
+                                            predicted_zeta_max)
 
 ALPHA = np.geomspace(1e-6, 3e-4, 30)
 
@@ -69,7 +70,7 @@ def test_zeta_max_up_to_a_response_level():
     q = np.array([1.0, 2.0, 3.0, 4.0])[:, None] * [1.0, 1.0]
     zeta = np.array([[0.1, 0.3, 0.2, 0.5], [0.1, 0.2, 0.4, 0.3]]).T
     bb = Backbones(amplitude=np.arange(4.0), mean={"q_res_z": q, "zeta": zeta}, std=None)
-    value, j = zeta_max(bb)
+    value, j = predicted_zeta_max(bb)
     assert value.tolist() == [0.5, 0.4] and j.tolist() == [3, 2]
-    value, j = zeta_max(bb, q_max=3.0)
+    value, j = predicted_zeta_max(bb, q_max=3.0)
     assert value.tolist() == [0.3, 0.4] and j.tolist() == [1, 2]

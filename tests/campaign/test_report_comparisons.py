@@ -9,7 +9,7 @@ from ringdamper.campaign import paper
 from ringdamper.campaign.optimum_check import surrogate_vs_computed
 from ringdamper.campaign.paper import paper_comparison
 from ringdamper.campaign.report_tables import html_table
-from ringdamper.campaign.summary import backbone_summary, dnnm_summary
+from ringdamper.campaign.summary import backbone_summary, dnnm_summary, grid_zeta_max, log_q_zeta_max
 from ringdamper.io import variable
 
 
@@ -44,6 +44,20 @@ def test_backbone_summary_finds_the_damping_peak_and_skips_unusable_points():
     assert s2["zeta_max"] < 2e-3 and s2["q_high"] == pytest.approx(ds.q_res_z.values[-4])
     with pytest.raises(ValueError, match="no usable point"):
         backbone_summary(ds.q_res_z, ds.omega0, ds.zeta, np.ones(30, int))
+
+
+def test_zeta_max_read_on_the_grid_and_interpolated_in_log_q():
+    """ζ a parabola in ln q peaking between two nodes: the grid reading is the higher node, the
+    log-q reading the vertex; at an end of the searched range both are the grid value."""
+    x = np.linspace(-1, 1, 9)
+    q, zeta = np.exp(x), 2.0 - 3.0 * (x - 0.13) ** 2
+    q_star, z_star = log_q_zeta_max(q, zeta)
+    assert np.log(q_star) == pytest.approx(0.13, abs=1e-12) and z_star == pytest.approx(2.0, abs=1e-12)
+    value, j = grid_zeta_max(q, zeta)
+    assert j == 5 and value == zeta[5]                 # x = 0.25 lies nearer the vertex than x = 0
+    assert log_q_zeta_max(q, zeta, q_max=np.exp(0.1)) == pytest.approx((1.0, zeta[4]))
+    assert grid_zeta_max(q, zeta, q_max=np.exp(0.1))[1] == 4
+    assert log_q_zeta_max(q, x) == pytest.approx((np.e, 1.0))
 
 
 def test_zeta_max_is_sought_up_to_the_level_cap_only():

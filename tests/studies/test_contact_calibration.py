@@ -2,9 +2,9 @@
 import numpy as np
 import pytest
 
-from ringdamper.studies.contact_calibration import (PAPER_TARGET, PLAUSIBLE, SHAPE_PENALTY, Metrics,
-                                            backbone_metrics, contact_section, in_plausible_range,
-                                            objective)
+from ringdamper.studies.contact_calibration.metrics import (PAPER_TARGET, SHAPE_PENALTY, Metrics,
+                                                    backbone_metrics, objective)
+from ringdamper.studies.contact_calibration.trial import PLAUSIBLE, contact_section, in_plausible_range
 from ringdamper.config import load_config
 
 

@@ -7,7 +7,7 @@ import yaml
 
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc
-from ringdamper.studies.fidelity.quantities import peak, relative_errors, richardson, user_quantities
+from ringdamper.studies.fidelity.quantities import relative_errors, richardson, user_quantities
 from ringdamper.studies.fidelity.summary import choose
 from ringdamper.studies.fidelity.surrogate import backbone_dataset, lhs_design
 from tests.nonlinear.systems import one_dof
@@ -22,13 +22,6 @@ def test_richardson_recovers_an_analytic_limit_and_order():
     assert f0 == pytest.approx(10.0, rel=1e-12) and p == pytest.approx(2.0, rel=1e-9)
     with pytest.raises(ValueError, match="not monotone"):
         richardson(h, [1.0, 2.0, 1.5])
-
-
-def test_peak_is_the_vertex_of_a_sampled_parabola():
-    x = np.linspace(-1, 1, 9)
-    xv, yv = peak(x, 2.0 - 3.0 * (x - 0.13) ** 2)
-    assert xv == pytest.approx(0.13, abs=1e-12) and yv == pytest.approx(2.0, abs=1e-12)
-    assert peak(x, x) == (1.0, 1.0)                   # at the end: the grid value
 
 
 def test_user_quantities_of_a_synthetic_backbone():

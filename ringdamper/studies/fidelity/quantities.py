@@ -2,9 +2,9 @@
 
 From the converged points (status 0 or 3) of a backbone, in order of amplitude:
 
-* ``zeta_max`` and ``q_at_zeta_max``: the peak of zeta against log |q_res,z| up to ``max_level``
-  (``exploration.optimum_max_level``, where the campaign's optimum reads it), refined by the parabola
-  through the grid maximum and its two neighbours (the grid value at an end point);
+* ``zeta_max`` and ``q_at_zeta_max``: the peak of zeta interpolated in log |q_res,z| up to
+  ``max_level`` (``exploration.optimum_max_level``, where the campaign's optimum reads it),
+  :func:`ringdamper.campaign.summary.log_q_zeta_max`;
 * ``freq_low`` / ``freq_high``: the resonant frequency (Hz) at the first and the last of the
   response levels (``sensitivity.levels``), linear in log |q_res,z|;
 * ``q_gamma_<i>``: |q_res,z| (m) at forcing level gamma_i, on the backbone's first rise of gamma
@@ -18,24 +18,13 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from ...campaign.summary import log_q_zeta_max
 from ...nonlinear.continuation import usable_status
 
 
 def _usable(ds: xr.Dataset):
     ok = usable_status(ds.status.values) & np.isfinite(ds.q_res_z.values) & np.isfinite(ds.zeta.values)
     return {k: ds[k].values[ok] for k in ("q_res_z", "zeta", "frequency", "gamma")}
-
-
-def peak(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
-    """(x, y) at the maximum of y, refined by the parabola through the three grid points around it."""
-    i = int(np.argmax(y))
-    if i == 0 or i == len(y) - 1:
-        return float(x[i]), float(y[i])
-    a, b, c = np.polyfit(x[i - 1:i + 2], y[i - 1:i + 2], 2)
-    if a >= 0:
-        return float(x[i]), float(y[i])
-    xv = float(np.clip(-b / (2 * a), x[i - 1], x[i + 1]))
-    return xv, float(np.polyval([a, b, c], xv))
 
 
 def _interp(x_new: float, x: np.ndarray, y: np.ndarray) -> float:
@@ -60,9 +49,8 @@ def user_quantities(ds: xr.Dataset, response_levels, gammas, max_level: float = 
     """The quantities above as a flat dict (units: 1, m, Hz, Hz, m ...)."""
     b = _usable(ds)
     logq = np.log(b["q_res_z"])
-    below = b["q_res_z"] <= max_level
-    x, z = peak(logq[below], b["zeta"][below])
-    out = {"zeta_max": z, "q_at_zeta_max": float(np.exp(x)),
+    q_star, z = log_q_zeta_max(b["q_res_z"], b["zeta"], max_level)
+    out = {"zeta_max": z, "q_at_zeta_max": q_star,
            "freq_low": _interp(np.log(response_levels[0]), logq, b["frequency"]),
            "freq_high": _interp(np.log(response_levels[-1]), logq, b["frequency"])}
     n = _first_rise(b["gamma"])

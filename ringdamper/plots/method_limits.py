@@ -1,18 +1,14 @@
-"""Charts of the method-limit studies (docs/method_limits.md), matplotlib Agg."""
+"""Charts of the method-limit studies (docs/method_limits.md): each draws the dataset of its study
+(:mod:`ringdamper.studies.method_limits`)."""
 from __future__ import annotations
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-
-from ringdamper.nonlinear.eebm import ZETA_LIMIT  # noqa: E402
-from ringdamper.nonlinear.truncation import THRESHOLD  # noqa: E402
-from ringdamper.plots.optimum import draw_branch  # noqa: E402
-
-from .harmonics import worst_error  # noqa: E402
+from ..nonlinear.eebm import ZETA_LIMIT
+from ..nonlinear.truncation import THRESHOLD
+from .optimum import draw_branch
 
 MARKERS = {"structural": "s", "friction_1dof": "o", "friction_2dof": "^", "preload": "o", "gap": "^"}
 
@@ -40,11 +36,10 @@ def plot_eebm_validity(study: xr.Dataset, path) -> None:
     plt.close(fig)
 
 
-def plot_harmonics(study: xr.Dataset, path) -> None:
-    """Errors of each H against the converged reference: ω and amplitude (worst of the two) and ζ
-    against the open fraction of the period, and ω/amplitude against the highest-harmonic energy
-    fraction ε_H with the warning threshold."""
-    worst = worst_error(study)
+def plot_harmonics(study: xr.Dataset, worst: xr.DataArray, path) -> None:
+    """Errors of each H against the converged reference: ω and amplitude (``worst``, the larger of
+    the two per family, H and α) and ζ against the open fraction of the period, and ω/amplitude
+    against the highest-harmonic energy fraction ε_H with the warning threshold."""
     zeta = np.abs(study.zeta_error)
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.3))
     colours = dict(zip(study.n_harmonics.values, ("tab:red", "tab:orange", "tab:blue", "tab:green")))

@@ -3,8 +3,9 @@
 # analytic systems; the Kriging coverage study refits the surrogates of the campaign dataset.
 # Resources (common.smk's convention) from one run of each on the shared 2-core machine: the largest,
 # Kriging coverage, 271 s and 309 MB (E-EBM 176 s and 173 MB, harmonics 13 s, stability 11 s).
+from ringdamper.studies.method_limits import STUDIES as LIMIT_STUDIES
+
 LIMITS = f"{RESULTS}/fidelity/limits"
-LIMIT_STUDIES = ("eebm_validity", "harmonics", "stability", "kriging_coverage")
 
 
 rule method_limits:

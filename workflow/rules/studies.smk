@@ -4,6 +4,8 @@
 # the benchmarks of one `make studies` run on the shared 2-core machine (results/benchmarks/studies/;
 # contact_calibration: its slowest stage, coarse, 26 min on 2 threads, and its largest peak, 0.97 GB in
 # harmonics_B; the figure and table rules read small files, as the campaign's figure rules: <= 0.3 GB).
+from ringdamper.studies.contact_calibration.dataset import FIGURE_STAGES, STAGES as CALIBRATION_STAGES
+
 STUDIES = f"{RESULTS}/studies"
 STUDY_REDUCED = f"{STUDIES}/default_reduced.nc"
 
@@ -14,7 +16,7 @@ rule studies:
         f"{STUDIES}/mesh_convergence.csv",
         f"{STUDIES}/reduction_convergence.csv",
         expand(f"{STUDIES}/contact_calibration/{{stage}}.csv",
-               stage=("coarse", "refine", "harmonics_A", "harmonics_B")),
+               stage=CALIBRATION_STAGES),
         f"{STUDIES}/contact_calibration/calibration_default_backbone.png",
         f"{STUDIES}/contact_calibration/tables.md",
         f"{STUDIES}/contact_state/contact_state_designs.csv",
@@ -108,7 +110,7 @@ rule study_contact_calibration:
         table=f"{STUDIES}/contact_calibration/{{stage}}.csv",
         curves=f"{STUDIES}/contact_calibration/{{stage}}.npz",
     wildcard_constraints:
-        stage="coarse|refine|harmonics_A|harmonics_B",
+        stage="|".join(CALIBRATION_STAGES),
     params:
         config=sections(*STUDY),
     threads: 2
@@ -127,7 +129,7 @@ rule study_contact_calibration:
 
 rule study_contact_figures:
     input:
-        expand(f"{STUDIES}/contact_calibration/{{stage}}.npz", stage=("coarse", "refine", "harmonics_A")),
+        expand(f"{STUDIES}/contact_calibration/{{stage}}.npz", stage=FIGURE_STAGES),
     output:
         backbone=report(f"{STUDIES}/contact_calibration/calibration_default_backbone.png",
                         category="Studies"),
@@ -152,7 +154,7 @@ rule study_contact_figures:
 rule study_contact_tables:
     input:
         expand(f"{STUDIES}/contact_calibration/{{stage}}.csv",
-               stage=("coarse", "refine", "harmonics_A", "harmonics_B")),
+               stage=CALIBRATION_STAGES),
     output:
         f"{STUDIES}/contact_calibration/tables.md",
     threads: 1

@@ -26,6 +26,9 @@ def grid_contacts(grid: dict) -> list[dict]:
 
 STAGES = ("coarse", "refine", "harmonics_A", "harmonics_B")
 
+#: The stages whose backbones the figures draw (:func:`figure_curves`).
+FIGURE_STAGES = ("coarse", "refine", "harmonics_A")
+
 
 def stage_trials(config: dict, stage: str) -> list[tuple[dict, int]]:
     """(contact section, H) of every trial of a stage of the study: the ``coarse`` and ``refine``

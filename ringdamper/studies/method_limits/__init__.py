@@ -6,6 +6,9 @@ Hill's stability of forced responses (:mod:`.stability`). :func:`run` gives a st
 its chart is drawn from that dataset by the rule script."""
 from __future__ import annotations
 
+#: The studies :func:`run` knows.
+STUDIES = ("eebm_validity", "harmonics", "stability", "kriging_coverage")
+
 
 def run(study: str, dataset=None, sizes=(20, 40, 60, 100), surrogate: dict | None = None):
     """The dataset of ``study`` (``eebm_validity``, ``harmonics``, ``stability`` or
@@ -28,5 +31,5 @@ def run(study: str, dataset=None, sizes=(20, 40, 60, 100), surrogate: dict | Non
             raise ValueError("kriging_coverage needs the campaign dataset")
         ds = kriging_coverage.coverage_study(dataset, usable_mask(dataset), sizes, surrogate)
     else:
-        raise ValueError(f"study {study!r}; allowed eebm_validity, harmonics, stability, kriging_coverage")
+        raise ValueError(f"study {study!r}; allowed {', '.join(STUDIES)}")
     return ds

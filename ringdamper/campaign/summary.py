@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..nonlinear.continuation import usable_status
+from ..status import usable_status
 
 
 def backbone_summary(q, omega0, zeta, status=None, max_level=np.inf) -> dict:

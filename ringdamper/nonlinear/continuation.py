@@ -35,12 +35,12 @@ holding a rigid-body motion lets go). Failures never raise: they end the run wit
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from enum import IntEnum
 from typing import Any, Callable
 
 import numpy as np
 
 from ringdamper.nonlinear.newton import Factorization, NewtonResult, newton
+from ringdamper.status import Status
 
 
 # Weight, in the arc length of :func:`natural_then_arclength`, of the unknowns outside ``jump_mask``
@@ -48,26 +48,6 @@ from ringdamper.nonlinear.newton import Factorization, NewtonResult, newton
 # contact lets go. At full weight its drift dominates the tangent there, the steps walk along the
 # drift and the geometry tests, which look at the other unknowns, see noise.
 FREE_WEIGHT = 0.3
-
-
-class Status(IntEnum):
-    """Per-point status (0 = converged), stored with every result."""
-
-    CONVERGED = 0
-    NO_CONVERGENCE = 1       # step size fell below its minimum
-    NOT_REACHED = 2          # continuation stopped before this point
-    DRIFT = 3                # converged, but a free body is not in mean equilibrium (ratchets)
-    MAX_POINTS = 4           # arc-length budget exhausted before the end of the range
-
-
-#: The statuses of the points that are solutions, which every reader of a result keeps: converged (0),
-#: and converged with the ring's mean rigid-body equilibrium held by the gauge (3, flagged).
-USABLE_STATUS = (int(Status.CONVERGED), int(Status.DRIFT))
-
-
-def usable_status(status) -> np.ndarray:
-    """Per point, whether its ``status`` is one of :data:`USABLE_STATUS`."""
-    return np.isin(status, USABLE_STATUS)
 
 
 @dataclass

@@ -36,7 +36,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from ringdamper.nonlinear.normalisation import PAPER_NORMALISED_FREQUENCY, normalised_frequency
-from ringdamper.nonlinear.continuation import usable_status
+from ringdamper.status import usable_status
 
 # Paper §2.6 / Fig. 8 on the default geometry.
 PAPER_TARGET = {"zeta_max": 0.15e-2,                 # maximum modal damping ratio

@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ...nonlinear.continuation import usable_status
+from ...status import usable_status
 
 
 def _usable(ds: xr.Dataset):

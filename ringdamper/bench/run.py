@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from ringdamper.config import load_config
-from ringdamper.nonlinear.continuation import usable_status
+from ringdamper.status import usable_status
 
 
 def _fe_chain(config: dict) -> dict:

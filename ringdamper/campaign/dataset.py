@@ -17,13 +17,12 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ..nonlinear.continuation import USABLE_STATUS, Status
 from ..io import unreadable, variable
+from ..status import CHAIN_FAILED, USABLE_STATUS, Status
 
 log = logging.getLogger(__name__)
 
 HELD_STATUS = int(Status.DRIFT)
-CHAIN_FAILED = 99  # status of every point of a geometry whose chain failed before the dNNM
 STATUS_NAMES = {int(s): s.name.lower().replace("_", " ") for s in Status} | {CHAIN_FAILED: "chain failed"}
 
 # dnnm.nc scalars kept in the dataset (optional ones are NaN where a file lacks them)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ..nonlinear.continuation import usable_status
+from ..status import usable_status
 from .summary import backbone_summary, dnnm_summary
 
 OUTPUTS = ("q_res_z", "omega0", "zeta", "gamma")

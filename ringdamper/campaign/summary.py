@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..nonlinear.continuation import usable_status
+from ..status import usable_status
 
 
 def grid_zeta_max(q, zeta, q_max: float = np.inf):

@@ -5,7 +5,8 @@ method chain:
   linearisation;
 * :mod:`.fourier`: Fourier/AFT operators; :mod:`.structure`: the per-harmonic linear structure;
 * :mod:`.condensed`: the harmonic balance residual condensed onto the contact coordinates;
-* :mod:`.newton`, :mod:`.continuation`: the generic solver and continuation (no physics);
+* :mod:`.newton`, :mod:`.continuation`: the generic solver and continuation (no physics); the
+  statuses they give every point are in :mod:`ringdamper.status`;
 * :mod:`.epmc`: the extended periodic motion concept (dNNM); :mod:`.eebm`: the extended energy
   balance method; :mod:`.forced`, :mod:`.frf`: the forced response and its resonance peak;
   :mod:`.response`: response measures;

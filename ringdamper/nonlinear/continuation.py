@@ -30,17 +30,18 @@ multiplied by ``min(grow, turn/θ)`` when the corrector was cheap (effort ≤ ``
 ``hard``), never below half (so the tangent turns by about ``turn`` per step, whatever the
 initial and maximum steps). ``jump_mask`` restricts the geometry to the unknowns that identify
 the branch (the EPMC leaves out the mean values, which move freely where the last contact
-holding a rigid-body motion lets go). Failures never raise: they end the run with a status.
+holding a rigid-body motion lets go). Failures never raise: they end the run with a status
+(:class:`ringdamper.status.Status`).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from enum import IntEnum
 from typing import Any, Callable
 
 import numpy as np
 
 from ringdamper.nonlinear.newton import Factorization, NewtonResult, newton
+from ringdamper.status import Status
 
 
 # Weight, in the arc length of :func:`natural_then_arclength`, of the unknowns outside ``jump_mask``
@@ -48,26 +49,6 @@ from ringdamper.nonlinear.newton import Factorization, NewtonResult, newton
 # contact lets go. At full weight its drift dominates the tangent there, the steps walk along the
 # drift and the geometry tests, which look at the other unknowns, see noise.
 FREE_WEIGHT = 0.3
-
-
-class Status(IntEnum):
-    """Per-point status (0 = converged), stored with every result."""
-
-    CONVERGED = 0
-    NO_CONVERGENCE = 1       # step size fell below its minimum
-    NOT_REACHED = 2          # continuation stopped before this point
-    DRIFT = 3                # converged, but a free body is not in mean equilibrium (ratchets)
-    MAX_POINTS = 4           # arc-length budget exhausted before the end of the range
-
-
-#: The statuses of the points that are solutions, which every reader of a result keeps: converged (0),
-#: and converged with the ring's mean rigid-body equilibrium held by the gauge (3, flagged).
-USABLE_STATUS = (int(Status.CONVERGED), int(Status.DRIFT))
-
-
-def usable_status(status) -> np.ndarray:
-    """Per point, whether its ``status`` is one of :data:`USABLE_STATUS`."""
-    return np.isin(status, USABLE_STATUS)
 
 
 @dataclass
@@ -216,13 +197,9 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
         why = res.reason
         if res.converged:
             fac_t, tangent_t = _natural_tangent(fun, dfun_ds, res.z, s_t)
-            w = root_n * scale(z)
-            chord = np.r_[(res.z - z) / w, s_t - s]
-            t0, t1 = _unit(np.r_[tangent / w, 1.0]), _unit(np.r_[tangent_t / w, 1.0])
-            if t1 @ chord < 0:
-                t1 = -t1
-            geometry = _step_geometry(t0, t1, chord, mask)
-            why = ("fold in s between the points" if t1[-1] <= 0 else
+            geometry, fold = _natural_geometry(z, s, tangent, res.z, s_t, tangent_t,
+                                               root_n * scale(z), mask)
+            why = ("fold in s between the points" if fold else
                    _untrusted(geometry, max_angle, s_t - s <= corner * steps.minimum))
         if not why:
             s, z, fac, tangent = s_t, res.z, fac_t, tangent_t
@@ -238,12 +215,21 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
             continue
         ds = 0.5 * (s_t - s)
         if ds < steps.minimum:
-            for k in range(gi, n):
-                status[k] = Status.NO_CONVERGENCE if k == gi else Status.NOT_REACHED
-                reason[k] = (f"step below minimum at s={s:.6g}: {why}" if k == gi
-                             else f"continuation stopped at s={s:.6g}")
+            _stopped(out, range(gi, n), f"step below minimum at s={s:.6g}: {why}",
+                     f"continuation stopped at s={s:.6g}")
             break
     return out
+
+
+def _natural_geometry(z0, s0, tangent0, z1, s1, tangent1, w, mask):
+    """Geometry (:func:`_step_geometry`) of the natural step from ``(z0, s0)`` to ``(z1, s1)``
+    in ``u = [z/w, s]`` with the tangents ``(dz/ds, 1)`` at both ends, and whether the end
+    tangent oriented along the chord points to decreasing ``s`` (a fold in ``s`` between them)."""
+    chord = np.r_[(z1 - z0) / w, s1 - s0]
+    t0, t1 = _unit(np.r_[tangent0 / w, 1.0]), _unit(np.r_[tangent1 / w, 1.0])
+    if t1 @ chord < 0:
+        t1 = -t1
+    return _step_geometry(t0, t1, chord, mask), t1[-1] <= 0
 
 
 def _natural_tangent(fun, dfun_ds, z, s):
@@ -258,6 +244,15 @@ def _record(out: NaturalResult, i: int, s: float, res: NewtonResult, accept):
     out.status[i], out.reason[i] = Status.CONVERGED, ""
     if accept is not None:
         accept(res.z, res.payload)
+
+
+def _stopped(out: NaturalResult, indices, why: str, after: str):
+    """Statuses of the grid values ``indices`` left unsolved where a run stopped: no convergence
+    (reason ``why``) at the first, not reached (reason ``after``) at the others."""
+    for k in indices:
+        first = k == indices[0]
+        out.status[k] = Status.NO_CONVERGENCE if first else Status.NOT_REACHED
+        out.reason[k] = why if first else after
 
 
 @dataclass
@@ -392,77 +387,127 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
     geometry tests of the module docstring on both halves of the bracket), otherwise the bracket
     is bisected on the branch (a corrector on the hyperplane normal to the bracket's chord
     through its midpoint) and the solve repeated from the half that brackets the value, down to
-    ``steps.minimum``. Points keep statuses and reasons as in :func:`natural`; ``branch`` holds
-    every accepted point of both parts (``s`` then not monotone). Arc length is measured on
-    ``[z/(√n·scale(z)), s]``: the RMS relative change of the unknowns and the change of ``s``
-    weigh alike, except the unknowns outside ``jump_mask``, which weigh ``FREE_WEIGHT``.
-    ``max_points`` bounds the arc-length points (default ``400·max(1, 0.5 / steps.maximum)``, so
-    that a smaller maximum step does not run out of points)."""
+    ``steps.minimum`` (:class:`NaturalThenArclength`). Points keep statuses and reasons as in
+    :func:`natural`; ``branch`` holds every accepted point of both parts (``s`` then not
+    monotone). Arc length is measured on ``[z/(√n·scale(z)), s]``: the RMS relative change of the
+    unknowns and the change of ``s`` weigh alike, except the unknowns outside ``jump_mask``, which
+    weigh ``FREE_WEIGHT``. ``max_points`` bounds the arc-length points (default
+    ``400·max(1, 0.5 / steps.maximum)``, so that a smaller maximum step does not run out of
+    points)."""
     grid = np.asarray(grid, float)
     out = natural(fun, dfun_ds, z0, grid, scale, steps, tol, max_iter, accept=accept,
                   s_start=s_start, on_failure=on_failure, jump_mask=jump_mask)
     todo = np.flatnonzero(out.status == Status.NO_CONVERGENCE)
     if not todo.size or not out.branch:                  # complete, or no start point
         return out
-    k0 = int(todo[0])
-    first = out.branch[-1]
     if max_points is None:
         max_points = int(400 * max(1.0, 0.5 / steps.maximum))
-    n = first.z.size
-    root_n = np.sqrt(n)
-    mask = None if jump_mask is None else np.r_[jump_mask, True]
-    keep = slice(None) if mask is None else mask
-    bracket_fit = 0.25
+    past_fold = NaturalThenArclength(fun, dfun_ds, scale, steps, tol, max_iter, out, int(todo[0]),
+                                     accept, jump_mask)
+    past_fold.run(on_failure, max_points)
+    return out
 
-    def fun_x(x, jac):
-        r, J, trivial, n_core, payload = fun(x[:-1], x[-1], jac)
-        Jx = np.hstack([J, dfun_ds(x[:-1], x[-1])[:, None]]) if jac else None
+
+class NaturalThenArclength:
+    """The arc-length part of :func:`natural_then_arclength`. Pseudo-arc-length continuation
+    (:func:`arclength`, Allgower & Georg 2003, ch. 6, with its step control and geometry tests)
+    of ``r(x) = r(z, s) = 0`` in ``x = [z, s]`` (:meth:`residual`: the Jacobian bordered by
+    ``∂r/∂s``; :meth:`scaling`: the arc-length metric) from the last accepted point of the
+    natural run ``out``, towards increasing ``s``. Every accepted point (:meth:`accept_point`)
+    solves the grid values it passed at fixed ``s`` (:meth:`solve_grid_value`), bisecting the
+    bracket on the branch where the solution does not fit it (:meth:`bisect`); :meth:`run` then
+    gives the values left unsolved their statuses. State: ``previous``, the last accepted branch
+    point; ``next``, the index of the first grid value not yet solved; ``why``, why a grid solve
+    failed ("" if none did)."""
+
+    #: A grid solution is trusted within this many bracket lengths of the secant interpolant (an
+    #: arc that turns by θ ≤ ``max_angle`` stays within θ/8 of its chord).
+    BRACKET_FIT = 0.25
+
+    def __init__(self, fun: Callable, dfun_ds: Callable, scale: Callable, steps: StepControl,
+                 tol: float, max_iter: int, out: NaturalResult, first_missing: int,
+                 accept: Callable | None, jump_mask: np.ndarray | None):
+        self.fun, self.dfun_ds, self.scale, self.steps = fun, dfun_ds, scale, steps
+        self.tol, self.max_iter, self.out, self.accept = tol, max_iter, out, accept
+        self.first = out.branch[-1]
+        self.root_n = np.sqrt(self.first.z.size)
+        self.mask = None if jump_mask is None else np.r_[jump_mask, True]
+        self.keep = slice(None) if self.mask is None else self.mask
+        self.start = first_missing
+        self.next = first_missing
+        self.previous = np.r_[self.first.z, self.first.s]
+        self.why = ""
+
+    def run(self, on_failure: Callable[[], bool] | None, max_points: int) -> None:
+        """Arc length from the natural run's last point towards increasing ``s`` until every grid
+        value is solved, then the statuses of the values left unsolved."""
+        x0 = self.previous
+        grid = self.out.grid
+        direction = np.zeros(x0.size)
+        direction[-1] = 1.0
+        run = arclength(self.residual, x0, direction, self.scaling(x0), self.steps, self.tol,
+                        self.max_iter, stop=lambda x: self.next >= grid.size,
+                        max_points=max_points, rescale=self.scaling, accept=self.accept_point,
+                        on_failure=on_failure, jump_mask=self.mask)
+        unfilled = [j for j in range(self.start, grid.size) if self.out.points[j] is None]
+        why = self.why or f"arc length from s={self.first.s:.6g}: {run.reason}"
+        _stopped(self.out, unfilled, why, "continuation stopped")
+
+    def residual(self, x, jac):
+        """``r(z, s)`` at ``x = [z, s]`` and its Jacobian ``[∂r/∂z, ∂r/∂s]``."""
+        r, J, trivial, n_core, payload = self.fun(x[:-1], x[-1], jac)
+        Jx = np.hstack([J, self.dfun_ds(x[:-1], x[-1])[:, None]]) if jac else None
         return r, Jx, trivial, n_core, payload
 
-    def rescale(x, _previous=None):
+    def scaling(self, x, _previous=None):
         """Arc-length scaling at ``x`` (the previous scaling is not needed); unknowns outside
         ``jump_mask`` weigh ``FREE_WEIGHT``."""
-        sc = np.r_[root_n * scale(x[:-1]), 1.0]
-        if mask is not None:
-            sc[~mask] /= FREE_WEIGHT
+        sc = np.r_[self.root_n * self.scale(x[:-1]), 1.0]
+        if self.mask is not None:
+            sc[~self.mask] /= FREE_WEIGHT
         return sc
 
-    def bisect(xa, xb, sc):
-        """Branch point between ``xa`` and ``xb``: corrector on the hyperplane normal to their
-        chord through its midpoint (None if it fails or leaves the bracket)."""
-        chord = (xb - xa) / sc
-        plane, mid = chord / sc, 0.5 * (xa + xb)
+    def accept_point(self, x, payload):
+        """Accepted arc-length point: record it, then solve the grid values it passed."""
+        if self.accept is not None:
+            self.accept(x[:-1], payload)
+        if x is self.previous:                            # the start point, already recorded
+            return
+        out, grid = self.out, self.out.grid
+        out.branch.append(ContinuationPoint(x[-1], x[:-1], payload, 0))
+        xa = self.previous
+        while self.next < grid.size and xa[-1] < grid[self.next] <= x[-1]:
+            k, sk = self.next, grid[self.next]
+            res, self.why = self.solve_grid_value(sk, xa, x)
+            if res is None:
+                self.next = grid.size                        # stop; statuses set by run
+                break
+            _record(out, k, sk, res, None)
+            self.next += 1
+        self.previous = x
 
-        def bordered(xx, jac):
-            r, J, trivial, n_core, payload = fun_x(xx, jac)
-            Jb = np.vstack([J, plane]) if jac else None
-            return np.r_[r, plane @ (xx - mid)], Jb, trivial, n_core, payload
-
-        res = newton(bordered, mid, lambda _: sc, tol, max_iter)
-        ok = res.converged and np.linalg.norm((res.z - mid) / sc) <= np.linalg.norm(chord)
-        return res.z if ok else None
-
-    def solve_grid(sk, xa, xb):
-        """Grid value ``sk`` between the branch points ``xa``, ``xb``: ``(NewtonResult, "")``
-        or ``(None, why)``. Trusted when the solution lies within ``bracket_fit`` times the
-        bracket's length of the secant interpolant (an arc that turns by θ ≤ ``max_angle``
-        stays within θ/8 of its chord)."""
-        sc = rescale(xa)
+    def solve_grid_value(self, sk, xa, xb):
+        """Grid value ``sk`` between the branch points ``xa``, ``xb``, by Newton at fixed ``s``
+        from the secant interpolant: ``(NewtonResult, "")`` or ``(None, why)``. Trusted within
+        :attr:`BRACKET_FIT` bracket lengths of the interpolant, otherwise the bracket is bisected
+        on the branch and the half that brackets ``sk`` tried, down to ``steps.minimum``."""
+        sc = self.scaling(xa)
         while True:
             w = (sk - xa[-1]) / (xb[-1] - xa[-1])
             guess = (1 - w) * xa + w * xb
-            res = newton(lambda zz, jj: fun(zz, sk, jj), guess[:-1], scale, tol, max_iter)
-            length = np.linalg.norm(((xb - xa) / sc)[keep])
+            res = newton(lambda zz, jj: self.fun(zz, sk, jj), guess[:-1], self.scale, self.tol,
+                         self.max_iter)
+            length = np.linalg.norm(((xb - xa) / sc)[self.keep])
             if res.converged:
-                off = np.linalg.norm(((np.r_[res.z, sk] - guess) / sc)[keep])
-                if off <= bracket_fit * length:
+                off = np.linalg.norm(((np.r_[res.z, sk] - guess) / sc)[self.keep])
+                if off <= self.BRACKET_FIT * length:
                     return res, ""
                 why = f"solution {off / length:.3g} bracket lengths off the secant"
             else:
                 why = res.reason
-            if length < steps.minimum:
+            if length < self.steps.minimum:
                 return None, f"re-solve at grid s={sk:.6g}: {why}"
-            xm = bisect(xa, xb, sc)
+            xm = self.bisect(xa, xb, sc)
             if xm is None:
                 return None, f"re-solve at grid s={sk:.6g}: bisection of the bracket failed"
             if (xm[-1] - sk) * (xa[-1] - sk) <= 0:      # the first half brackets sk
@@ -470,37 +515,17 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
             else:
                 xa = xm
 
-    nxt = [k0]
-    prev = [np.r_[first.z, first.s]]
-    why = [""]
+    def bisect(self, xa, xb, sc):
+        """Branch point between ``xa`` and ``xb``: corrector on the hyperplane normal to their
+        chord through its midpoint (None if it fails or leaves the bracket)."""
+        chord = (xb - xa) / sc
+        plane, mid = chord / sc, 0.5 * (xa + xb)
 
-    def on_grid(x, payload):
-        """Accepted arc-length point: record it, then solve the grid values it passed."""
-        if accept is not None:
-            accept(x[:-1], payload)
-        if x is prev[0]:                                  # the start point, already recorded
-            return
-        out.branch.append(ContinuationPoint(x[-1], x[:-1], payload, 0))
-        xa = prev[0]
-        while nxt[0] < grid.size and xa[-1] < grid[nxt[0]] <= x[-1]:
-            k, sk = nxt[0], grid[nxt[0]]
-            res, why[0] = solve_grid(sk, xa, x)
-            if res is None:
-                nxt[0] = grid.size                           # stop; statuses set below
-                break
-            _record(out, k, sk, res, None)
-            nxt[0] += 1
-        prev[0] = x
+        def bordered(xx, jac):
+            r, J, trivial, n_core, payload = self.residual(xx, jac)
+            Jb = np.vstack([J, plane]) if jac else None
+            return np.r_[r, plane @ (xx - mid)], Jb, trivial, n_core, payload
 
-    x0 = prev[0]
-    direction = np.zeros(n + 1)
-    direction[-1] = 1.0
-    run = arclength(fun_x, x0, direction, rescale(x0), steps, tol, max_iter,
-                    stop=lambda x: nxt[0] >= grid.size, max_points=max_points,
-                    rescale=rescale, accept=on_grid, on_failure=on_failure, jump_mask=mask)
-    unfilled = [j for j in range(k0, grid.size) if out.points[j] is None]
-    for j in unfilled:
-        out.status[j] = Status.NO_CONVERGENCE if j == unfilled[0] else Status.NOT_REACHED
-        out.reason[j] = (why[0] or f"arc length from s={first.s:.6g}: {run.reason}"
-                         if j == unfilled[0] else "continuation stopped")
-    return out
+        res = newton(bordered, mid, lambda _: sc, self.tol, self.max_iter)
+        ok = res.converged and np.linalg.norm((res.z - mid) / sc) <= np.linalg.norm(chord)
+        return res.z if ok else None

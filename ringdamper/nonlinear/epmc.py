@@ -24,9 +24,10 @@ import numpy as np
 
 from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
-from ringdamper.nonlinear.continuation import Status, StepControl, natural_then_arclength
+from ringdamper.nonlinear.continuation import StepControl, natural_then_arclength
 from ringdamper.nonlinear.fourier import default_nt
 from ringdamper.nonlinear.structure import Structure
+from ringdamper.status import Status
 
 
 @dataclass

@@ -23,13 +23,14 @@ from scipy.optimize import minimize_scalar
 
 from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
-from ringdamper.nonlinear.continuation import Status, StepControl, arclength
+from ringdamper.nonlinear.continuation import StepControl, arclength
 from ringdamper.nonlinear.forced import ForcedProblem
 from ringdamper.nonlinear.fourier import default_nt
 from ringdamper.nonlinear.newton import newton
 from ringdamper.nonlinear.response import response_harmonics, time_peak
 from ringdamper.nonlinear.stability import hill_exponents, is_stable, modal_hill_matrices
 from ringdamper.nonlinear.structure import Structure
+from ringdamper.status import Status
 
 
 @dataclass

@@ -15,7 +15,6 @@ import time
 import numpy as np
 import xarray as xr
 
-from ringdamper.nonlinear.continuation import usable_status
 from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc
@@ -24,6 +23,7 @@ from ringdamper.nonlinear.separation import separation_indicators, warn_separati
 from ringdamper.nonlinear.truncation import highest_harmonic_fraction, warn_truncation
 from ringdamper.io import declared_dataset, nan_values, variable
 from ringdamper.nonlinear.normalisation import normalised_frequency
+from ringdamper.status import CHAIN_FAILED, usable_status
 
 log = logging.getLogger(__name__)
 
@@ -149,7 +149,7 @@ def dnnm_dataset(alpha, n_pairs: int, values: dict, status, attrs: dict) -> xr.D
     return ds
 
 
-def failed_dnnm(config: dict, kappa, reason: str, n_pairs: int, status: int = 99) -> xr.Dataset:
+def failed_dnnm(config: dict, kappa, reason: str, n_pairs: int, status: int = CHAIN_FAILED) -> xr.Dataset:
     """dnnm.nc of a geometry whose chain failed: the variables of a solved one, all NaN, every point
     carrying ``status`` and the attribute ``reason``."""
     alpha = amplitude_grid(config["dnnm"])

@@ -5,7 +5,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ..nonlinear.continuation import usable_status
+from ..status import usable_status
 
 
 def plot_backbones(curves: list[tuple[str, dict]], path, q_max: float = 1.0e-3) -> None:

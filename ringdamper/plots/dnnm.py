@@ -4,7 +4,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ..nonlinear.continuation import usable_status
+from ..status import usable_status
 from .static import draw_surface_map
 
 

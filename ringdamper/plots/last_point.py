@@ -7,7 +7,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
-from ..nonlinear.continuation import usable_status
+from ..status import usable_status
 
 
 def plot_separation(traces: dict[str, xr.Dataset], onset: float, path) -> None:

@@ -7,7 +7,7 @@ import numpy as np
 
 from .dnnm import draw_backbones, draw_energy_map
 from .static import draw_contact_maps
-from ..nonlinear.continuation import usable_status
+from ..status import usable_status
 
 STYLES = {"default": {"color": "k", "lw": 1.8}, "optimum": {"color": "tab:red", "lw": 1.8}}
 

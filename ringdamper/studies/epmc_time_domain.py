@@ -20,12 +20,12 @@ import numpy as np
 import pandas as pd
 import scipy.linalg as sla
 
-from ringdamper.nonlinear.continuation import Status
 from ringdamper.nonlinear.epmc import Backbone, epmc, linear_limit
 from ringdamper.nonlinear.fourier import Fourier
 from ringdamper.nonlinear.friction import FrictionContacts, contact_aft
 from ringdamper.nonlinear.shooting import hbm_state, phase_row, return_error, shoot
 from ringdamper.nonlinear.structure import Structure
+from ringdamper.status import Status
 
 LOG = logging.getLogger(__name__)
 

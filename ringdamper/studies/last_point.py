@@ -19,7 +19,7 @@ import xarray as xr
 from ringdamper.io import declared_dataset, variable
 from ringdamper.nonlinear.separation import separation_indicators
 from ringdamper.nonlinear.stage import DNNM_VARIABLES, STATUS_MEANING, amplitude_grid, solve_backbone
-from ringdamper.nonlinear.continuation import usable_status
+from ringdamper.status import usable_status
 
 
 def fine_grid(campaign_alpha: np.ndarray, points_below: int, n_points: int) -> np.ndarray:

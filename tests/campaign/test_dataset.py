@@ -5,11 +5,11 @@ import logging
 import numpy as np
 import pytest
 
-from ringdamper.campaign.dataset import (CHAIN_FAILED, TrainingSetError, aggregate, check_training,
-                                         usable_mask)
+from ringdamper.campaign.dataset import TrainingSetError, aggregate, check_training, usable_mask
 from ringdamper.campaign.kriging import fit_campaign
 from ringdamper.nonlinear.stage import failed_dnnm
 from ringdamper.io import check_contract
+from ringdamper.status import CHAIN_FAILED
 
 from .synthetic import backbone, design, dnnm_dataset, write_campaign
 

@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from ringdamper.nonlinear.frf import forced_response
-from ringdamper.nonlinear.continuation import Status
 from ringdamper.nonlinear.epmc import linear_limit, epmc
+from ringdamper.status import Status
 
 from .systems import multi_dof, two_dof
 

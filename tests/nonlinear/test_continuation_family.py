@@ -13,10 +13,11 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.continuation import Status, StepControl
+from ringdamper.nonlinear.continuation import StepControl
 from ringdamper.nonlinear.epmc import epmc, linear_limit
 from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.structure import Structure
+from ringdamper.status import Status
 
 from .systems import jenkins_chain
 

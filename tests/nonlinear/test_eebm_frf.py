@@ -12,8 +12,8 @@ from scipy.optimize import minimize_scalar
 
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.frf import forced_response, resonance_peak
-from ringdamper.nonlinear.continuation import Status
 from ringdamper.nonlinear.epmc import epmc
+from ringdamper.status import Status
 
 from .systems import one_dof
 

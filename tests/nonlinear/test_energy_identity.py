@@ -7,8 +7,8 @@ import numpy as np
 
 from ringdamper.nonlinear.friction import contact_aft, dissipated_energy
 from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.continuation import Status
 from ringdamper.nonlinear.epmc import epmc
+from ringdamper.status import Status
 
 from .systems import multi_dof
 

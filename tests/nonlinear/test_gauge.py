@@ -9,9 +9,9 @@ ring in the cyclic toy."""
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.continuation import Status
 from ringdamper.nonlinear.epmc import EPMCProblem, epmc
 from ringdamper.nonlinear.newton import newton
+from ringdamper.status import Status
 
 from .systems import cyclic_structure, free_body
 

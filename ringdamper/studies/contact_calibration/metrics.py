@@ -20,7 +20,7 @@ import numpy as np
 
 from ringdamper.campaign.summary import grid_zeta_max, log_q_zeta_max
 from ringdamper.nonlinear.normalisation import PAPER_NORMALISED_FREQUENCY
-from ringdamper.nonlinear.continuation import usable_status
+from ringdamper.status import usable_status
 
 # Paper §2.6 / Fig. 8 on the default geometry.
 PAPER_TARGET = {"zeta_max": 0.15e-2,                 # maximum modal damping ratio

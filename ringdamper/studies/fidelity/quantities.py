@@ -19,7 +19,7 @@ import numpy as np
 import xarray as xr
 
 from ...campaign.summary import log_q_zeta_max
-from ...nonlinear.continuation import usable_status
+from ...status import usable_status
 
 
 def _usable(ds: xr.Dataset):

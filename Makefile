@@ -55,7 +55,9 @@ fidelity: $(STAMP)
 report: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --report results/report.html
 
+# ruff (pyproject.toml [tool.ruff]) on the Python, Snakemake's linter on the rules
 lint: $(STAMP)
+	$(BIN)/ruff check .
 	$(BIN)/snakemake --lint
 
 clean:

@@ -1,14 +1,11 @@
 """Rule script: the fidelity tables -> summary.yaml (chosen settings, campaign times) and the charts
 (ringdamper.studies.fidelity.summary, ringdamper.plots.fidelity)."""
-import matplotlib
+import pandas as pd
 
-matplotlib.use("Agg")
-import pandas as pd  # noqa: E402
-
-from ringdamper.io import write_yaml  # noqa: E402
+from ringdamper.io import write_yaml
 from ringdamper.logs import to_file
-from ringdamper.plots.fidelity import plot_dials, plot_mesh, plot_pareto  # noqa: E402
-from ringdamper.studies.fidelity.summary import campaign_summary, pareto_points  # noqa: E402
+from ringdamper.plots.fidelity import plot_dials, plot_mesh, plot_pareto
+from ringdamper.studies.fidelity.summary import campaign_summary, pareto_points
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = to_file(sm.log[0])

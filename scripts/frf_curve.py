@@ -3,9 +3,9 @@ and the E-EBM prediction from the geometry's backbone (frf/{gid}/gamma_{level}.n
 import yaml
 
 from ringdamper.campaign.forced_check import EEBMBackbone, forced_curve
-from ringdamper.nonlinear.stage import contacts_from_static, structure_from_reduced
 from ringdamper.io import read_netcdf, write_netcdf
 from ringdamper.logs import to_file
+from ringdamper.nonlinear.stage import contacts_from_static, structure_from_reduced
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = to_file(sm.log[0])

@@ -1,8 +1,7 @@
 """Rule script: one method-limit study (wildcard ``study``) -> its NetCDF and its chart."""
 from ringdamper.io import read_netcdf, write_netcdf
 from ringdamper.logs import to_file
-from ringdamper.plots.method_limits import (plot_eebm_validity, plot_harmonics, plot_kriging_coverage,
-                                            plot_stability)
+from ringdamper.plots.method_limits import plot_eebm_validity, plot_harmonics, plot_kriging_coverage, plot_stability
 from ringdamper.studies.method_limits import run
 from ringdamper.studies.method_limits.harmonics import worst_error
 

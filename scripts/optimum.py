@@ -3,8 +3,15 @@ and the optimum geometry (surrogate/optimum.yaml)."""
 import numpy as np
 
 from ringdamper.campaign.dataset import usable_mask
-from ringdamper.campaign.exploration import (cube_grid, explore_grid, find_optimum, forcing_of,
-                                             grid_dataset, optimum_record, response_axis)
+from ringdamper.campaign.exploration import (
+                                             cube_grid,
+                                             explore_grid,
+                                             find_optimum,
+                                             forcing_of,
+                                             grid_dataset,
+                                             optimum_record,
+                                             response_axis,
+)
 from ringdamper.campaign.kriging import KrigingSurrogate
 from ringdamper.io import read_netcdf, write_netcdf, write_yaml
 from ringdamper.logs import to_file

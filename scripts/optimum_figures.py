@@ -1,8 +1,8 @@
 """Rule script: static.nc, dnnm.nc and forced responses of the default and optimum rings ->
 Fig. 19 (maps; backbones and forced responses)."""
 from ringdamper.io import read_netcdf
-from ringdamper.plots.optimum import plot_optimum_dynamics, plot_optimum_maps
 from ringdamper.logs import to_file
+from ringdamper.plots.optimum import plot_optimum_dynamics, plot_optimum_maps
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = to_file(sm.log[0])

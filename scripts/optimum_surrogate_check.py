@@ -3,8 +3,8 @@ backbone at the optimum (table and figure)."""
 from ringdamper.campaign.optimum_check import predicted_backbone, surrogate_vs_computed
 from ringdamper.campaign.report_tables import write_html_table
 from ringdamper.io import read_netcdf
-from ringdamper.plots.optimum import plot_surrogate_at_optimum
 from ringdamper.logs import to_file
+from ringdamper.plots.optimum import plot_surrogate_at_optimum
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = to_file(sm.log[0])

@@ -10,5 +10,6 @@ sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = to_file(sm.log[0])
 with open(sm.input.resonance) as fh:
     target_hz = yaml.safe_load(fh)["frequency_hz"]
-write_yaml(default_normalisation(read_netcdf(sm.input.reduced, "reduced"), read_netcdf(sm.input.static, "static"), sm.params.config,
-                                 target_hz), sm.output[0])
+normalisation = default_normalisation(read_netcdf(sm.input.reduced, "reduced"), read_netcdf(sm.input.static, "static"),
+                                      sm.params.config, target_hz)
+write_yaml(normalisation, sm.output[0])

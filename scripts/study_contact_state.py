@@ -9,8 +9,15 @@ import numpy as np
 from ringdamper.io import write_csv
 from ringdamper.logs import to_file
 from ringdamper.plots.static import plot_contact_maps, plot_free_closure, plot_variety_search
-from ringdamper.studies.contact_state import (best_design, closure_summary, design_config, design_states,
-                                              free_closure, search, support_of)
+from ringdamper.studies.contact_state import (
+                                              best_design,
+                                              closure_summary,
+                                              design_config,
+                                              design_states,
+                                              free_closure,
+                                              search,
+                                              support_of,
+)
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = to_file(sm.log[0])

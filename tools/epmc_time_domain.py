@@ -29,11 +29,16 @@ import pandas as pd
 from ringdamper.nonlinear.epmc import epmc
 from ringdamper.nonlinear.structure import Structure
 from ringdamper.plots.epmc_time_domain import plot_comparison
-from ringdamper.studies.epmc_time_domain import (compare, damper_poles, frequency_rise, return_check,
-                                                 step_convergence, stuck_frequency)
+from ringdamper.studies.epmc_time_domain import (
+    compare,
+    damper_poles,
+    frequency_rise,
+    return_check,
+    step_convergence,
+    stuck_frequency,
+)
 from tests.nonlinear.systems import jenkins_chain
-from tests.nonlinear.test_continuation_family import (ISSUE_GRID, OPTIONS, SEEDS, chain_grid,
-                                                     issue_chain)
+from tests.nonlinear.test_continuation_family import ISSUE_GRID, OPTIONS, SEEDS, chain_grid, issue_chain
 
 SIMPLEST = 149
 SPURIOUS = 179

@@ -19,10 +19,10 @@ import time
 
 import numpy as np
 
-from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.eebm import eebm
+from ringdamper.nonlinear.epmc import epmc, linear_limit
 from ringdamper.nonlinear.frf import forced_response, resonance_peak
-from ringdamper.nonlinear.epmc import linear_limit, epmc
+from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.structure import HarmonicData, Structure
 
 

@@ -23,8 +23,7 @@ from ringdamper.status import usable_status
 
 def _fe_chain(config: dict) -> dict:
     """Mesh + assembly + ND diagram + Campbell of the default ring (the modal stage)."""
-    from ringdamper.fem.model import stuck_contact_stiffness
-    from ringdamper.fem.model import build_model
+    from ringdamper.fem.model import build_model, stuck_contact_stiffness
     from ringdamper.geometry.sector import build_sector
     from ringdamper.modal.stage import run_modal_stage
 
@@ -71,9 +70,14 @@ def _geometry_chain(config: dict) -> dict:
     """The per-geometry chain on the default ring, one core: mesh -> static -> reduced -> dnnm
     (H = 1, the campaign's H and 5), and one forced-response curve (H = 1) through the E-EBM
     point of largest damping, with its peak against the E-EBM prediction."""
-    from ringdamper.nonlinear.stage import contacts_from_static, run_dnnm, structure_from_reduced, target_stuck_frequency
     from ringdamper.fem.model import build_model
     from ringdamper.geometry.sector import build_sector
+    from ringdamper.nonlinear.stage import (
+        contacts_from_static,
+        run_dnnm,
+        structure_from_reduced,
+        target_stuck_frequency,
+    )
     from ringdamper.reduction import modal_basis, reduce_sector, reduced_dataset
     from ringdamper.reduction.stage import reduction_sizes
     from ringdamper.static.stage import solve_static, static_dataset

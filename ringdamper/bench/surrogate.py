@@ -2,8 +2,9 @@
 
 100 training geometries (27-point factorial + 73 LHS) × 30 amplitudes × 4 outputs = 120 Kriging models,
 then the 50³ grid with predictive standard deviations, then Sobol indices (10⁴ base samples) of a cheap
-function and of the surrogate at one amplitude (evaluated at every amplitude, as the caller does). Smooth synthetic responses stand in for the
-dNNM outputs; their shape only changes the fit time through the optimiser's iteration count.
+function and of the surrogate at one amplitude (evaluated at every amplitude, as the caller does).
+Smooth synthetic responses stand in for the dNNM outputs; their shape only changes the fit time
+through the optimiser's iteration count.
 """
 
 from __future__ import annotations
@@ -83,7 +84,8 @@ def run(settings: dict | None = None, grid_points: int = 50) -> dict:
 
 def _cheap(x: np.ndarray) -> np.ndarray:
     """Three cheap outputs (Ishigami-like) of the three parameters."""
-    y = np.sin(np.pi * x[:, 0]) + 7.0 * np.sin(np.pi * x[:, 1]) ** 2 + 0.1 * (np.pi * x[:, 2]) ** 4 * np.sin(np.pi * x[:, 0])
+    y = (np.sin(np.pi * x[:, 0]) + 7.0 * np.sin(np.pi * x[:, 1]) ** 2
+         + 0.1 * (np.pi * x[:, 2]) ** 4 * np.sin(np.pi * x[:, 0]))
     return np.column_stack([y, x[:, 0] + x[:, 1] * x[:, 2], np.exp(x[:, 2])])
 
 

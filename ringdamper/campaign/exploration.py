@@ -30,7 +30,6 @@ from scipy.optimize import minimize
 from ..io import variable
 from .summary import grid_zeta_max
 
-
 BACKBONE_OUTPUTS = ("q_res_z", "omega0", "zeta", "gamma")
 
 
@@ -256,7 +255,8 @@ def sweeps(surrogate, n: int, levels) -> xr.Dataset:
     dims = ("parameter", "sample", "amplitude")
     for name in BACKBONE_OUTPUTS:
         data[f"{name}_mean"] = variable(dims, per[f"{name}_mean"], surrogate.units[name], f"Kriging mean of {name}")
-        data[f"{name}_std"] = variable(dims, per[f"{name}_std"], surrogate.units[name], f"Kriging standard deviation of {name}")
+        data[f"{name}_std"] = variable(dims, per[f"{name}_std"], surrogate.units[name],
+                                       f"Kriging standard deviation of {name}")
     for name in ENVELOPE_OUTPUTS:
         data[f"{name}_at_level"] = variable(("parameter", "sample", "level"), at[name], surrogate.units[name],
                                             f"Kriging mean of {name} at |q_res,z| (NaN: not reached)")

@@ -34,11 +34,10 @@ import xarray as xr
 from scipy.interpolate import PchipInterpolator
 from scipy.optimize import brentq
 
-from ringdamper.nonlinear.frf import forced_response, resonance_peak
 from ringdamper.io import variable
+from ringdamper.nonlinear.frf import forced_response, resonance_peak
 from ringdamper.nonlinear.normalisation import normalised_frequency
 from ringdamper.status import usable_status
-
 
 
 @dataclass

@@ -16,11 +16,12 @@ the sector centred on the X axis, theta in [-pi/N, pi/N]):
   upper-surface nodes coincide with the groove nodes at rest.
 
 The theta grid has breakpoints at the ends and centres of the lower bumps (-+pi/N, -+2pi/3N,
--+pi/3N) and at the blade faces. Node and element counts never depend on kappa: only radial coordinates move. The two cyclic faces
-theta = -+pi/N match node for node through a 2 pi / N rotation about Z. With 27-node bricks the mesh is
-isoparametric (scikit-fem ``MeshHex2``): every node, not only the vertices, is placed by its block's
-exact map, so cylinders and bumps are exact at the nodes and a bump's central node moves by exactly
-its delta_r. With 8-node bricks (``MeshHex1``) the geometry is trilinear.
+-+pi/3N) and at the blade faces. Node and element counts never depend on kappa: only radial
+coordinates move. The two cyclic faces theta = -+pi/N match node for node through a 2 pi / N
+rotation about Z. With 27-node bricks the mesh is isoparametric (scikit-fem ``MeshHex2``): every
+node, not only the vertices, is placed by its block's exact map, so cylinders and bumps are exact at
+the nodes and a bump's central node moves by exactly its delta_r. With 8-node bricks (``MeshHex1``)
+the geometry is trilinear.
 """
 
 from __future__ import annotations

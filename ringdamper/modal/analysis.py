@@ -16,8 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import Basis
 from scipy.optimize import brentq
+from skfem import Basis
 
 from ringdamper.fem.cyclic import cyclic_transform, nodal_diameter_phase, project
 from ringdamper.fem.elasticity import tangent_stiffness

@@ -20,8 +20,14 @@ from ringdamper.fem.model import SectorModel, build_model, stuck_contact_stiffne
 from ringdamper.fem.prestress import prestressed_stiffness, rpm_to_rad_s
 from ringdamper.geometry.sector import build_sector
 from ringdamper.io import variable
-from ringdamper.modal.analysis import (FamilyClassifier, campbell, cyclic_modes, eo_crossing, family_frequency,
-                    labelled_modes)
+from ringdamper.modal.analysis import (
+    FamilyClassifier,
+    campbell,
+    cyclic_modes,
+    eo_crossing,
+    family_frequency,
+    labelled_modes,
+)
 from ringdamper.nonlinear.normalisation import normalised_frequency
 
 NO_STATIC_STATE = "all pairs stuck (linearised kn, kt springs): static contact state not used"

@@ -62,8 +62,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ringdamper.nonlinear.friction import ContactAFT, FrictionContacts, contact_aft
 from ringdamper.nonlinear.fourier import Fourier, real_block, real_vector, to_complex
+from ringdamper.nonlinear.friction import ContactAFT, FrictionContacts, contact_aft
 from ringdamper.nonlinear.structure import Structure
 
 

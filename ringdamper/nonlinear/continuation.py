@@ -43,7 +43,6 @@ import numpy as np
 from ringdamper.nonlinear.newton import Factorization, NewtonResult, newton
 from ringdamper.status import Status
 
-
 # Weight, in the arc length of :func:`natural_then_arclength`, of the unknowns outside ``jump_mask``
 # (relative to the others): the mean values of a body that moves freely where its last holding
 # contact lets go. At full weight its drift dominates the tangent there, the steps walk along the

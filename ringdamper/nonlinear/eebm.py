@@ -30,8 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ringdamper.nonlinear.friction import dissipated_energy
 from ringdamper.nonlinear.epmc import Backbone
+from ringdamper.nonlinear.friction import dissipated_energy
 from ringdamper.nonlinear.response import response_harmonics, time_peak
 
 log = logging.getLogger(__name__)

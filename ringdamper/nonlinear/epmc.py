@@ -22,10 +22,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
 from ringdamper.nonlinear.continuation import StepControl, natural_then_arclength
 from ringdamper.nonlinear.fourier import default_nt
+from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.structure import Structure
 from ringdamper.status import Status
 

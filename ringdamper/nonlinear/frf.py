@@ -21,11 +21,11 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
 from ringdamper.nonlinear.continuation import StepControl, arclength
 from ringdamper.nonlinear.forced import ForcedProblem
 from ringdamper.nonlinear.fourier import default_nt
+from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.newton import newton
 from ringdamper.nonlinear.response import response_harmonics, time_peak
 from ringdamper.nonlinear.stability import hill_exponents, is_stable, modal_hill_matrices

@@ -15,14 +15,14 @@ import time
 import numpy as np
 import xarray as xr
 
-from ringdamper.nonlinear.friction import FrictionContacts
+from ringdamper.io import declared_dataset, nan_values, variable
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.structure import HarmonicData, Structure
-from ringdamper.nonlinear.separation import separation_indicators, warn_separation
-from ringdamper.nonlinear.truncation import highest_harmonic_fraction, warn_truncation
-from ringdamper.io import declared_dataset, nan_values, variable
+from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.normalisation import normalised_frequency
+from ringdamper.nonlinear.separation import separation_indicators, warn_separation
+from ringdamper.nonlinear.structure import HarmonicData, Structure
+from ringdamper.nonlinear.truncation import highest_harmonic_fraction, warn_truncation
 from ringdamper.status import CHAIN_FAILED, usable_status
 
 log = logging.getLogger(__name__)

@@ -5,9 +5,9 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
+from ..status import usable_status
 from .dnnm import draw_backbones, draw_energy_map
 from .static import draw_contact_maps
-from ..status import usable_status
 
 STYLES = {"default": {"color": "k", "lw": 1.8}, "optimum": {"color": "tab:red", "lw": 1.8}}
 

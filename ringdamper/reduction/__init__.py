@@ -7,9 +7,18 @@
 ``reduced``: the chain, the modal basis, the stuck contact and the reduced.nc contract.
 """
 
-from .reduced import (ModalBasis, ReducedHarmonic, ReducedSector,
-                      eigenfrequencies, modal_basis, modal_stuck_frequencies,
-                      reduce_sector, reduced_dataset, stuck_frequencies, stuck_matrices)
+from .reduced import (
+                      ModalBasis,
+                      ReducedHarmonic,
+                      ReducedSector,
+                      eigenfrequencies,
+                      modal_basis,
+                      modal_stuck_frequencies,
+                      reduce_sector,
+                      reduced_dataset,
+                      stuck_frequencies,
+                      stuck_matrices,
+)
 
 __all__ = ["ModalBasis", "ReducedHarmonic", "ReducedSector",
            "eigenfrequencies", "modal_basis", "modal_stuck_frequencies",

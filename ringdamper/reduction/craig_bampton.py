@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
+
 from ..fem.linalg import factorize, lowest_modes
 
 DENSE_EIGEN_LIMIT = 600  # interior sizes below this use a dense eigensolver for the fixed-interface modes

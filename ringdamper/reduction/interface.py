@@ -46,8 +46,8 @@ def interface_transform(cm: CyclicModel, n_if: int) -> tuple[np.ndarray, np.ndar
     n_p, n_l, n_fi = cm.n_physical, cm.n_left, cm.n_fi
     if not 0 <= n_if <= n_l:
         raise ValueError(f"n_if = {n_if} outside [0, {n_l}] (face DoFs)")
-    p, l = slice(0, n_p), slice(n_p, n_p + n_l)
-    K_ll, M_ll, K_lp = cm.K[l, l], cm.M[l, l], cm.K[l, p]
+    p, f = slice(0, n_p), slice(n_p, n_p + n_l)
+    K_ll, M_ll, K_lp = cm.K[f, f], cm.M[f, f], cm.K[f, p]
     S = -sla.solve(K_ll, K_lp, assume_a="her")
     if n_if:
         w2, phi = sla.eigh(K_ll, M_ll, subset_by_index=(0, n_if - 1))
@@ -55,8 +55,8 @@ def interface_transform(cm: CyclicModel, n_if: int) -> tuple[np.ndarray, np.ndar
         w2, phi = np.zeros(0), np.zeros((n_l, 0), dtype=K_ll.dtype)
     T = np.zeros((n_p + n_l + n_fi, n_p + n_if + n_fi), dtype=np.result_type(S, phi))
     T[p, :n_p] = np.eye(n_p)
-    T[l, :n_p] = S
-    T[l, n_p:n_p + n_if] = phi
+    T[f, :n_p] = S
+    T[f, n_p:n_p + n_if] = phi
     T[n_p + n_l:, n_p + n_if:] = np.eye(n_fi)
     return T, w2
 

@@ -27,9 +27,9 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import xarray as xr
 
+from ..fem.contact_law import spring_diagonal
 from ..fem.cyclic import interblade_phase, nodal_diameter
 from ..fem.model import SectorModel, relative_displacement_operator
-from ..fem.contact_law import spring_diagonal
 from ..io import variable
 from .craig_bampton import CraigBampton, craig_bampton
 from .cyclic import mead

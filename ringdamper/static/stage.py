@@ -20,14 +20,14 @@ import numpy as np
 import scipy.sparse as sp
 import xarray as xr
 
-from ringdamper.static.solver import StaticContactResult, solve_static_contact
+from ringdamper.fem.contact_law import pair_stiffness
 from ringdamper.fem.cyclic import cyclic_transform, project
 from ringdamper.fem.elasticity import centrifugal_load
-from ringdamper.fem.contact_law import pair_stiffness
 from ringdamper.fem.model import SectorModel, build_model, node_dofs, relative_displacement_operator
 from ringdamper.fem.prestress import rpm_to_rad_s, spin_mass
 from ringdamper.geometry.sector import BODY_RING, build_sector
 from ringdamper.io import declared_dataset, nan_values, variable
+from ringdamper.static.solver import StaticContactResult, solve_static_contact
 
 log = logging.getLogger(__name__)
 

@@ -10,8 +10,7 @@ from __future__ import annotations
 import copy
 import time
 
-from ringdamper.fem.model import stuck_contact_stiffness
-from ringdamper.fem.model import build_model
+from ringdamper.fem.model import build_model, stuck_contact_stiffness
 from ringdamper.fem.prestress import prestressed_stiffness, rpm_to_rad_s
 from ringdamper.geometry.sector import build_sector
 from ringdamper.modal.analysis import FamilyClassifier, family_frequency, labelled_modes

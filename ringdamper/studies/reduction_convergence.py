@@ -5,10 +5,10 @@ solve), contact free and stuck. Measured per (n_fi, n_if):
 
 * ``target_error``: relative error of the target mode's stuck frequency (the 1D family at the target
   ND, identified on the full model by ``modal.analysis.FamilyClassifier``);
-* ``receptance_error``: (``receptance_errors`` per frequency) max over the evaluation frequencies (fractions of the target's stuck frequency,
-  the band the dNNM backbone sweeps) of the relative Frobenius error of the contact-free receptance at
-  the contact coordinates, H(w) = B (K_h - w^2 M_h)^{-1} B^T, the operator the nonlinear stage condenses
-  the linear DoFs into;
+* ``receptance_error``: (``receptance_errors`` per frequency) max over the evaluation frequencies
+  (fractions of the target's stuck frequency, the band the dNNM backbone sweeps) of the relative
+  Frobenius error of the contact-free receptance at the contact coordinates, H(w) = B (K_h - w^2
+  M_h)^{-1} B^T, the operator the nonlinear stage condenses the linear DoFs into;
 * ``max_error``: max relative error of the first ``n_modes`` frequencies (free and stuck) over the
   checked NDs (modes below 1 Hz, the ring's ND-0 rigid motions, are compared in absolute terms).
 
@@ -23,8 +23,7 @@ import time
 import numpy as np
 import scipy.linalg as sla
 
-from ringdamper.fem.cyclic import cyclic_transform, project
-from ringdamper.fem.cyclic import interblade_phase
+from ringdamper.fem.cyclic import cyclic_transform, interblade_phase, project
 from ringdamper.fem.linalg import factorize
 from ringdamper.fem.model import SectorModel, contact_stiffness, relative_displacement_operator
 from ringdamper.modal.analysis import FamilyClassifier, cyclic_modes, labelled_modes

@@ -6,8 +6,8 @@ import pytest
 import yaml
 
 from ringdamper.campaign.sampling import make_samples
-from ringdamper.nonlinear.stage import amplitude_grid, failed_dnnm
 from ringdamper.io import check_contract, read_netcdf
+from ringdamper.nonlinear.stage import amplitude_grid, failed_dnnm
 from tests.snakemake_run import REPO, run_snakemake
 
 from .synthetic import dnnm_dataset, write_campaign

@@ -7,8 +7,8 @@ import pytest
 
 from ringdamper.campaign.dataset import TrainingSetError, aggregate, check_training, usable_mask
 from ringdamper.campaign.kriging import fit_campaign
-from ringdamper.nonlinear.stage import failed_dnnm
 from ringdamper.io import check_contract
+from ringdamper.nonlinear.stage import failed_dnnm
 from ringdamper.status import CHAIN_FAILED
 
 from .synthetic import backbone, design, dnnm_dataset, write_campaign

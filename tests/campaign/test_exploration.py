@@ -3,8 +3,7 @@ non-monotone predicted curves, and the grids of the exploration."""
 import numpy as np
 import pytest
 
-from ringdamper.campaign.exploration import (Backbones, at_levels, cube_grid, monotone, one_at_a_time,
-                                            predicted_zeta_max)
+from ringdamper.campaign.exploration import Backbones, at_levels, cube_grid, monotone, one_at_a_time, predicted_zeta_max
 
 ALPHA = np.geomspace(1e-6, 3e-4, 30)
 

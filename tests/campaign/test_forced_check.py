@@ -12,7 +12,6 @@ import pytest
 from ringdamper.campaign.forced_check import EEBMBackbone, forced_curve, forcing_levels, table3
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc, linear_limit
-
 from tests.nonlinear.systems import cyclic_structure, one_dof
 
 M, KT, MU, N = 2.0, 50.0, 0.3, 10.0

@@ -46,14 +46,20 @@ def campaign_dataset(n_geometries=40, seed=3):
     kappa = lhs(n_geometries, seed)
     alpha = np.array([1e-6, 1e-5, 1e-4])
     base = smooth(kappa)[:, None]
-    ds = xr.Dataset(
-        {"q_res_z": (("geometry", "amplitude"), 1e-4 * (1.2 + 0.3 * base) * alpha / alpha[-1], {"units": "m", "long_name": "resonant amplitude"}),
-         "omega0": (("geometry", "amplitude"), 1.0 + 0.01 * kappa[:, :1] - 1e-3 * base * np.log10(alpha / alpha[0]), {"units": "1", "long_name": "normalised frequency"}),
-         "zeta": (("geometry", "amplitude"), np.zeros((n_geometries, 3)), {"units": "1", "long_name": "damping ratio"}),
-         "gamma": (("geometry", "amplitude"), (2.0 + base) * alpha / alpha[0], {"units": "N", "long_name": "forcing level"})},
-        coords={"geometry": ("geometry", [f"t{i:03d}" for i in range(n_geometries)], {"units": "1", "long_name": "geometry id"}),
-                "amplitude": ("amplitude", alpha, {"units": "kg0.5 m", "long_name": "modal amplitude"}),
-                **{f"kappa{k + 1}": ("geometry", kappa[:, k], {"units": "1", "long_name": f"kappa{k + 1}"}) for k in range(3)}})
+    dims = ("geometry", "amplitude")
+    outputs = {
+        "q_res_z": (1e-4 * (1.2 + 0.3 * base) * alpha / alpha[-1], "m", "resonant amplitude"),
+        "omega0": (1.0 + 0.01 * kappa[:, :1] - 1e-3 * base * np.log10(alpha / alpha[0]), "1", "normalised frequency"),
+        "zeta": (np.zeros((n_geometries, 3)), "1", "damping ratio"),
+        "gamma": ((2.0 + base) * alpha / alpha[0], "N", "forcing level"),
+    }
+    names = [f"t{i:03d}" for i in range(n_geometries)]
+    coords = {"geometry": ("geometry", names, {"units": "1", "long_name": "geometry id"}),
+              "amplitude": ("amplitude", alpha, {"units": "kg0.5 m", "long_name": "modal amplitude"})}
+    for k in range(3):
+        coords[f"kappa{k + 1}"] = ("geometry", kappa[:, k], {"units": "1", "long_name": f"kappa{k + 1}"})
+    ds = xr.Dataset({name: (dims, values, {"units": units, "long_name": long_name})
+                     for name, (values, units, long_name) in outputs.items()}, coords=coords)
     return ds
 
 

@@ -4,9 +4,17 @@ import numpy as np
 import pytest
 
 from ringdamper.campaign.dataset import aggregate, usable_mask
-from ringdamper.campaign.exploration import (ENVELOPE_OUTPUTS, at_levels, cube_grid, explore_grid,
-                                             find_optimum, forcing_of, level_function, response_axis,
-                                             summary)
+from ringdamper.campaign.exploration import (
+    ENVELOPE_OUTPUTS,
+    at_levels,
+    cube_grid,
+    explore_grid,
+    find_optimum,
+    forcing_of,
+    level_function,
+    response_axis,
+    summary,
+)
 from ringdamper.campaign.kriging import KrigingSurrogate, fit_campaign
 from ringdamper.campaign.sobol_levels import pce_cross_check, sobol_study
 from ringdamper.campaign.validation import validate

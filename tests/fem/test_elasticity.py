@@ -1,8 +1,7 @@
 """The vectorised element kernels equal scikit-fem's generic forms (the oracle) to round-off."""
 import numpy as np
 import pytest
-from skfem import (Basis, BilinearForm, ElementHex1, ElementHex2, ElementVector, LinearForm, MeshHex1,
-                   asm)
+from skfem import Basis, BilinearForm, ElementHex1, ElementHex2, ElementVector, LinearForm, MeshHex1, asm
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 
 from ringdamper.fem.elasticity import centrifugal_load, mass_matrix, tangent_stiffness

@@ -2,13 +2,12 @@
 import numpy as np
 import pytest
 
-from ringdamper.studies.hub_calibration import crossing_speed
-from ringdamper.fem.model import stuck_contact_stiffness
 from ringdamper.fem.elasticity import internal_force, tangent_stiffness
-from ringdamper.fem.model import build_model
+from ringdamper.fem.model import build_model, stuck_contact_stiffness
 from ringdamper.fem.prestress import prestressed_stiffness, rpm_to_rad_s, static_centrifugal
 from ringdamper.geometry.sector import build_sector
 from ringdamper.modal.analysis import FamilyClassifier, family_frequency, labelled_modes
+from ringdamper.studies.hub_calibration import crossing_speed
 
 
 @pytest.fixture(scope="module")

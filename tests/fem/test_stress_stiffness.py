@@ -5,8 +5,13 @@ import pytest
 import scipy.linalg as sla
 from skfem import Basis, ElementHex2, MeshHex
 
-from ringdamper.fem.elasticity import (centrifugal_load, mass_matrix, small_strain_stress, stress_stiffness,
-                                       tangent_stiffness)
+from ringdamper.fem.elasticity import (
+    centrifugal_load,
+    mass_matrix,
+    small_strain_stress,
+    stress_stiffness,
+    tangent_stiffness,
+)
 
 E, NU, RHO = 2.0e11, 0.3, 7800.0
 
@@ -53,7 +58,8 @@ def euler_bernoulli_rotating(L, EI, rhoA, Omega, n=120):
             s = (xi + 1) / 2
             x, wj = (e + s) * le, w * le / 2
             N = np.array([1 - 3 * s**2 + 2 * s**3, le * (s - 2 * s**2 + s**3), 3 * s**2 - 2 * s**3, le * (s**3 - s**2)])
-            dN = np.array([6 * s**2 - 6 * s, le * (1 - 4 * s + 3 * s**2), 6 * s - 6 * s**2, le * (3 * s**2 - 2 * s)]) / le
+            dN = np.array([6 * s**2 - 6 * s, le * (1 - 4 * s + 3 * s**2),
+                           6 * s - 6 * s**2, le * (3 * s**2 - 2 * s)]) / le
             d2N = np.array([12 * s - 6, le * (6 * s - 4), 6 - 12 * s, le * (6 * s - 2)]) / le**2
             i = slice(2 * e, 2 * e + 4)
             Kb[i, i] += wj * EI * np.outer(d2N, d2N)

@@ -1,13 +1,11 @@
 """Cyclic symmetry: sector eigenvalues of ND k equal those of the full 360-degree model (docs/design.md §7)."""
 import numpy as np
 import pytest
-
 from annulus import assemble_full
-from ringdamper.fem.model import stuck_contact_stiffness
-from ringdamper.fem.cyclic import cyclic_transform
-from ringdamper.fem.cyclic import interblade_phase
+
+from ringdamper.fem.cyclic import cyclic_transform, interblade_phase
 from ringdamper.fem.linalg import lowest_modes
-from ringdamper.fem.model import build_model
+from ringdamper.fem.model import build_model, stuck_contact_stiffness
 from ringdamper.geometry.sector import build_sector
 from ringdamper.modal.analysis import cyclic_modes
 

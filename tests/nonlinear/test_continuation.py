@@ -4,8 +4,8 @@ recorded status, never an exception."""
 import numpy as np
 import pytest
 
+from ringdamper.nonlinear.epmc import epmc, linear_limit
 from ringdamper.nonlinear.frf import forced_response
-from ringdamper.nonlinear.epmc import linear_limit, epmc
 from ringdamper.status import Status
 
 from .systems import multi_dof, two_dof

@@ -2,11 +2,16 @@
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.stage import (contacts_from_static, failed_dnnm, run_dnnm, structure_from_reduced,
-                                   target_stuck_frequency)
 from ringdamper.fem.model import build_model
 from ringdamper.geometry.sector import build_sector
 from ringdamper.io import check_contract
+from ringdamper.nonlinear.stage import (
+    contacts_from_static,
+    failed_dnnm,
+    run_dnnm,
+    structure_from_reduced,
+    target_stuck_frequency,
+)
 from ringdamper.reduction import modal_basis, reduce_sector, reduced_dataset
 from ringdamper.static.stage import solve_static, static_dataset
 

@@ -11,8 +11,8 @@ import pytest
 from scipy.optimize import minimize_scalar
 
 from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.frf import forced_response, resonance_peak
 from ringdamper.nonlinear.epmc import epmc
+from ringdamper.nonlinear.frf import forced_response, resonance_peak
 from ringdamper.status import Status
 
 from .systems import one_dof

@@ -145,8 +145,8 @@ def test_soft_hold_below_one_percent_counts_as_free(tilt, gauged):
     wedge effect of a tilted contact normal): in gross slip only the normal spring holds it, at
     about ``tilt`` of the stiffness scale. Below ``gauge_tol`` (1 %) that soft hold counts as
     free and the direction is gauged; above it, and with the former 1e-9, it stays held."""
-    from ringdamper.nonlinear.friction import FrictionContacts
     from ringdamper.nonlinear.condensed import CondensedHBM
+    from ringdamper.nonlinear.friction import FrictionContacts
     from ringdamper.nonlinear.structure import Structure
 
     M = np.diag([1.0, 0.3])

@@ -6,11 +6,11 @@ import zlib
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.friction import FrictionContacts, contact_aft
 from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
 from ringdamper.nonlinear.epmc import EPMCProblem
 from ringdamper.nonlinear.forced import ForcedProblem
 from ringdamper.nonlinear.fourier import Fourier
+from ringdamper.nonlinear.friction import FrictionContacts, contact_aft
 
 from .systems import cyclic_structure, free_body, multi_dof
 

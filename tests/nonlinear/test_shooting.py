@@ -31,13 +31,19 @@ import pytest
 
 from ringdamper.nonlinear.epmc import epmc, linear_limit
 from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.shooting import (JenkinsTimeModel, hbm_state, march, phase_row,
-                                           return_error, shoot, shooting_residual)
+from ringdamper.nonlinear.shooting import (
+    JenkinsTimeModel,
+    hbm_state,
+    march,
+    phase_row,
+    return_error,
+    shoot,
+    shooting_residual,
+)
 from ringdamper.nonlinear.truncation import THRESHOLD, highest_harmonic_fraction
 from ringdamper.status import Status
 
-from .systems import (cyclic_structure, describing_function, jenkins_chain, multi_dof,
-                      one_dof)
+from .systems import cyclic_structure, describing_function, jenkins_chain, multi_dof, one_dof
 from .test_continuation_family import chain_grid
 
 RISING_SEED = 149

@@ -1,7 +1,7 @@
 """Reduced model against the full FE cyclic model (docs/design.md §7 Craig–Bampton check).
 
-At the campaign's settings (reduction section of config.yaml) the first 10 eigenfrequencies of ND 0, 3, 6, 9, contact free and
-stuck, match ``modal.cyclic_modes`` of the full sector to 0.1 %: on the coarse quadratic mesh for
+At the campaign's settings (reduction section of config.yaml) the first 10 eigenfrequencies of ND 0, 3, 6, 9,
+contact free and stuck, match ``modal.cyclic_modes`` of the full sector to 0.1 %: on the coarse quadratic mesh for
 every ND, on the default campaign mesh for the target ND 3. Static condensation is exact (1e-8).
 """
 import copy
@@ -9,14 +9,13 @@ import copy
 import numpy as np
 import pytest
 
+from ringdamper.fem.contact_law import stuck_pair_stiffness
 from ringdamper.fem.cyclic import cyclic_transform, project
 from ringdamper.fem.linalg import solve
 from ringdamper.fem.model import build_model, contact_stiffness
 from ringdamper.geometry.sector import build_sector
 from ringdamper.modal.analysis import cyclic_modes
-from ringdamper.fem.contact_law import stuck_pair_stiffness
-from ringdamper.reduction import (eigenfrequencies, reduce_sector, stuck_frequencies,
-                                  stuck_matrices)
+from ringdamper.reduction import eigenfrequencies, reduce_sector, stuck_frequencies, stuck_matrices
 from ringdamper.reduction.craig_bampton import craig_bampton
 from ringdamper.reduction.partition import partition
 from ringdamper.reduction.stage import reduction_sizes

@@ -4,13 +4,19 @@ import numpy as np
 import pytest
 import scipy.linalg as sla
 
+from ringdamper.fem.contact_law import stuck_pair_stiffness
 from ringdamper.fem.model import build_model
 from ringdamper.geometry.sector import BODY_RING, build_sector
 from ringdamper.io import check_contract, read_netcdf, write_netcdf
-from ringdamper.fem.contact_law import stuck_pair_stiffness
-from ringdamper.reduction import (eigenfrequencies, modal_basis, modal_stuck_frequencies,
-                                  reduce_sector, reduced_dataset, stuck_frequencies,
-                                  stuck_matrices)
+from ringdamper.reduction import (
+    eigenfrequencies,
+    modal_basis,
+    modal_stuck_frequencies,
+    reduce_sector,
+    reduced_dataset,
+    stuck_frequencies,
+    stuck_matrices,
+)
 from ringdamper.reduction.partition import partition
 from ringdamper.reduction.stage import reduction_sizes
 

@@ -10,9 +10,8 @@ the closure d_n = u_free − c·N.
 import numpy as np
 import pytest
 
-from ringdamper.static.synthetic import chain_flexibilities, floating_pair, wall_chain
-
 from ringdamper.static.solver import solve_static_contact
+from ringdamper.static.synthetic import chain_flexibilities, floating_pair, wall_chain
 
 K_SPRINGS = np.array([3.0e6, 1.5e6, 4.0e6, 2.5e6])
 LOADS = np.array([10.0, -4.0, 25.0, 40.0])

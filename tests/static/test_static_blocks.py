@@ -8,9 +8,8 @@ import pytest
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ringdamper.static.synthetic import assert_kkt, contact_forces, two_blocks
-
 from ringdamper.static.solver import solve_static_contact
+from ringdamper.static.synthetic import assert_kkt, contact_forces, two_blocks
 
 KN, KT = 1.0e4, 1.0e3
 METHODS = ["penalty", "lagrange"]

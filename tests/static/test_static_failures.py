@@ -5,10 +5,9 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from ringdamper.static.synthetic import floating_pair, two_blocks
-
 import ringdamper.static.solver as static
 from ringdamper.static.solver import solve_static_contact
+from ringdamper.static.synthetic import floating_pair, two_blocks
 
 KN, KT = 1.0e4, 1.0e3
 METHODS = ["penalty", "lagrange"]

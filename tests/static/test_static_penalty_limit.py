@@ -6,9 +6,8 @@ order of the relative error between successive decades must be 1 (within 0.1).
 """
 import numpy as np
 
-from ringdamper.static.synthetic import two_blocks
-
 from ringdamper.static.solver import solve_static_contact
+from ringdamper.static.synthetic import two_blocks
 
 KT = 1.0e3
 KNS = 10.0 ** np.arange(3, 8)  # the blocks' own contact stiffness is O(E·h) = O(100)

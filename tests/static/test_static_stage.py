@@ -4,7 +4,6 @@ import copy
 import numpy as np
 import pytest
 
-from ringdamper.studies.mesh_convergence import refined
 from ringdamper.fem.cyclic import cyclic_transform, project
 from ringdamper.fem.elasticity import centrifugal_load
 from ringdamper.fem.linalg import solve
@@ -12,6 +11,7 @@ from ringdamper.fem.model import build_model, node_dofs
 from ringdamper.fem.prestress import rpm_to_rad_s, spin_mass
 from ringdamper.geometry.sector import BODY_RING, build_sector
 from ringdamper.static.stage import solve_static, static_dataset
+from ringdamper.studies.mesh_convergence import refined
 
 EXTREMES = [(0, 0, 0), (1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1), (1, -1, -1)]
 

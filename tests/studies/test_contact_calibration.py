@@ -2,10 +2,15 @@
 import numpy as np
 import pytest
 
-from ringdamper.studies.contact_calibration.metrics import (PAPER_TARGET, SHAPE_PENALTY, Metrics,
-                                                    backbone_metrics, objective)
-from ringdamper.studies.contact_calibration.trial import PLAUSIBLE, contact_section, in_plausible_range
 from ringdamper.config import load_config
+from ringdamper.studies.contact_calibration.metrics import (
+    PAPER_TARGET,
+    SHAPE_PENALTY,
+    Metrics,
+    backbone_metrics,
+    objective,
+)
+from ringdamper.studies.contact_calibration.trial import PLAUSIBLE, contact_section, in_plausible_range
 
 
 def _metrics(**kw):
@@ -54,9 +59,9 @@ def test_metrics_peak_refinement_on_a_known_curve():
 
 def _one_dof_backbone(mu, alpha):
     """1-DoF oscillator with one preloaded Jenkins element (docs/design.md §7 oracle system)."""
-    from ringdamper.nonlinear.friction import FrictionContacts
     from ringdamper.nonlinear.eebm import eebm
     from ringdamper.nonlinear.epmc import epmc
+    from ringdamper.nonlinear.friction import FrictionContacts
     from ringdamper.nonlinear.structure import Structure
 
     m, k, kt, N = 2.0, 100.0, 50.0, 10.0

@@ -15,8 +15,17 @@ from ringdamper.fem.model import build_model
 from ringdamper.fem.prestress import rpm_to_rad_s
 from ringdamper.geometry.sector import build_sector
 from ringdamper.static.stage import solve_static, static_dataset
-from ringdamper.studies.contact_state import (CENTRE, REFERENCE_RINGS, Variety, best_design, contact_variety,
-                                              closure_summary, design_config, score, support_of)
+from ringdamper.studies.contact_state import (
+    CENTRE,
+    REFERENCE_RINGS,
+    Variety,
+    best_design,
+    closure_summary,
+    contact_variety,
+    design_config,
+    score,
+    support_of,
+)
 
 A = 5.0e-3  # m, slope of the groove profile per unit |s|
 

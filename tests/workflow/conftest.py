@@ -2,7 +2,8 @@
 by the workflow tests that read it or compare against it."""
 import pytest
 
-from tests.snakemake_run import SMALL_CONFIG as CONFIG, run_snakemake
+from tests.snakemake_run import SMALL_CONFIG as CONFIG
+from tests.snakemake_run import run_snakemake
 
 
 @pytest.fixture(scope="session")

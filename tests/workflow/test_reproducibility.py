@@ -8,7 +8,8 @@ import pytest
 import xarray as xr
 
 from ringdamper.io import provenance
-from tests.snakemake_run import SMALL_CONFIG as CONFIG, effective_config, run_snakemake
+from tests.snakemake_run import SMALL_CONFIG as CONFIG
+from tests.snakemake_run import effective_config, run_snakemake
 from tools.compare_results import differences
 
 

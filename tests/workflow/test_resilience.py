@@ -18,7 +18,8 @@ import pytest
 
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.io import InputFileError, read_netcdf
-from tests.snakemake_run import SMALL_CONFIG as CONFIG, fault_environment, run_snakemake, snakemake_command
+from tests.snakemake_run import SMALL_CONFIG as CONFIG
+from tests.snakemake_run import fault_environment, run_snakemake, snakemake_command
 from tools.compare_results import file_differences
 
 STAGES = ("static.nc", "reduced.nc", "dnnm.nc")

@@ -1,7 +1,7 @@
 """`make studies` on a small setting: every study rule runs on the coarse test configuration with
 small study grids, and its outputs agree with the library and with physics (the calibrated hub
-thickness reaches the operating speed; the mesh study's reference level has zero error and linear bricks are stiffer; more modes
-never make the reduced target frequency worse; the contact calibration's chosen set is the one of
+thickness reaches the operating speed; the mesh study's reference level has zero error and linear bricks are stiffer;
+more modes never make the reduced target frequency worse; the contact calibration's chosen set is the one of
 ``contact:``; the contact-state search covers its grid, and while every pair of the default ring stays
 closed its preload is linear in the clearance, interference included)."""
 import numpy as np
@@ -9,8 +9,8 @@ import pandas as pd
 import pytest
 import xarray as xr
 import yaml
-from tests.snakemake_run import REPO, run_snakemake
 
+from tests.snakemake_run import REPO, run_snakemake
 
 SMALL_STUDIES = {
     "hub_calibration": {"bracket": [0.01, 0.03], "xtol": 1.0e-5},

@@ -14,8 +14,7 @@ Modules:
 Method, settings, the ``kriging.nc`` layout and the measurements behind the choices: docs/surrogate.md.
 """
 
-from .campaign import (OUTPUTS, PARAMETERS, STATUS_CONSTANT, STATUS_GP, STATUS_MEANINGS, STATUS_UNFITTED,
-                       fit_campaign)
+from .campaign import OUTPUTS, PARAMETERS, STATUS_CONSTANT, STATUS_GP, STATUS_MEANINGS, STATUS_UNFITTED, fit_campaign
 from .fit import AMPLITUDE_RTOL, CONSTANT_RTOL, MATCH_RTOL, NUGGET_PROFILE, fit_model, fit_ot
 from .gp import BAND_PROBABILITY, KERNELS, SIGMA_BAND, GPModel, correlation, q2
 from .settings import DEFAULT_SETTINGS, DOMAIN_WIDTH, check_settings

@@ -43,7 +43,8 @@ def _training_mask(dataset: xr.Dataset, mask) -> np.ndarray:
     if mask.shape == shape[:1]:
         mask = np.repeat(mask[:, None], shape[1], axis=1)
     if mask.shape != shape:
-        raise ValueError(f"mask has shape {mask.shape}; expected (geometry,) = {shape[:1]} or (geometry, amplitude) = {shape}")
+        raise ValueError(f"mask has shape {mask.shape}; expected (geometry,) = {shape[:1]} "
+                         f"or (geometry, amplitude) = {shape}")
     return mask
 
 
@@ -124,7 +125,8 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
             loo[ia, rows] = model.loo_residuals()
             q2s[io, ia] = q2(model.y, loo[ia, rows])
         units, long_name = dataset[out].attrs.get("units", "1"), dataset[out].attrs.get("long_name", out)
-        per_output[out] = variable(("amplitude", "geometry"), train, units, f"training values of {long_name} (NaN: not used)")
+        per_output[out] = variable(("amplitude", "geometry"), train, units,
+                                   f"training values of {long_name} (NaN: not used)")
         per_output[f"{out}_beta"] = variable("amplitude", beta, units, f"Kriging constant trend of {out}")
         per_output[f"{out}_sigma"] = variable("amplitude", sigma, units, f"Kriging process standard deviation of {out}")
         per_output[f"{out}_variance_factor"] = variable(
@@ -134,7 +136,8 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
     amp_attrs = {"units": "1", "long_name": "modal amplitude", **dataset["amplitude"].attrs}
     geometry = dataset["geometry"].values if "geometry" in dataset.coords else np.arange(len(kappa))
     data = {
-        "kappa": variable(("geometry", "parameter"), kappa, "1", "normalised shape parameters of the training geometries"),
+        "kappa": variable(("geometry", "parameter"), kappa, "1",
+                          "normalised shape parameters of the training geometries"),
         "training_mask": variable(("amplitude", "geometry"), use.T.astype(np.int8), "1",
                                   "1 where the geometry trains the models of that amplitude"),
         "kernel": variable(("output", "amplitude"), np.full((n_out, n_amp), s["kernel"], dtype=object), "1",

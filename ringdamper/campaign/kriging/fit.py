@@ -103,7 +103,8 @@ def fit_model(x: np.ndarray, y: np.ndarray, settings: dict | None = None, name: 
         raise ValueError(f"{name}: inputs must be (n, d) and outputs (n,), got {x.shape} and {y.shape}")
     bad = ~np.isfinite(y) | ~np.all(np.isfinite(x), axis=1)
     if bad.any():
-        raise ValueError(f"{name}: {bad.sum()} non-finite training value(s) at rows {np.flatnonzero(bad)[:10].tolist()}; "
+        rows = np.flatnonzero(bad)[:10].tolist()
+        raise ValueError(f"{name}: {bad.sum()} non-finite training value(s) at rows {rows}; "
                          "filter failed geometries (mask) before fitting")
     if len(y) < 2:
         raise ValueError(f"{name}: {len(y)} training point(s); at least 2 are needed")

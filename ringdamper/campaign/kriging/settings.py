@@ -48,5 +48,6 @@ def check_settings(settings: dict | None) -> dict:
         if not 0.0 <= nugget < 1.0:
             raise ValueError(f"surrogate.nugget = {s['nugget']!r}; a fixed nugget must be in [0, 1)")
     elif nugget.shape != (2,) or not (0.0 < nugget[0] < nugget[1] < 1.0):
-        raise ValueError(f"surrogate.nugget = {s['nugget']!r}; an estimated nugget needs [low, high], 0 < low < high < 1")
+        raise ValueError(f"surrogate.nugget = {s['nugget']!r}; "
+                         "an estimated nugget needs [low, high], 0 < low < high < 1")
     return {**s, "scale_bounds": tuple(lo_hi), "nugget": float(nugget) if nugget.shape == () else tuple(nugget)}

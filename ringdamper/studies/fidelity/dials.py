@@ -1,8 +1,8 @@
 """The one-at-a-time cases of the fidelity study.
 
 Each dial (an entry of ``fidelity.dials``: name, configuration key ``section.key`` and a list of
-values) changes one key; a case is (ring, dial, value) and changes only that key of the campaign configuration. The finest
-value of a dial (last in its list) is that dial's converged reference: the error of a case is
+values) changes one key; a case is (ring, dial, value) and changes only that key of the campaign
+configuration. The finest value of a dial (last in its list) is that dial's converged reference: the error of a case is
 measured against the case of the same ring and dial at the finest value, every other key at its
 default, so that each dial's error is its own. A dial runs on the rings of its ``rings`` list (all
 rings when absent); the case of a dial at its default value is the one case ``(ring, "default",
@@ -12,7 +12,6 @@ rings when absent); the case of a dial at its default value is the one case ``(r
 from __future__ import annotations
 
 import copy
-
 
 DEFAULT = "default"
 

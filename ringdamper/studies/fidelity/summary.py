@@ -11,9 +11,9 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from ...status import usable_status
 from .dials import DEFAULT, case_key, default_value, dial_rings, dials, rings, value_label
 from .quantities import gamma_at, relative_errors, user_quantities
-from ...status import usable_status
 
 COST_KEYS = ("static_cpu_s", "reduction_cpu_s", "dnnm_cpu_s", "chain_cpu_s", "chain_time_s", "peak_rss_mb")
 

@@ -27,8 +27,8 @@ from ringdamper.campaign.forced_check import EEBMBackbone
 from ringdamper.io import variable
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.frf import forced_response, resonance_peak
+from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.structure import Structure
 
 SLIP_AMPLITUDE = 0.01   # a_s [m]

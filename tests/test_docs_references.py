@@ -1,8 +1,9 @@
 """Every reference the documentation names resolves: repository paths, ``module:function`` and dotted
 names, ``tests/...::test`` ids, test names, rules, ``docs/x.md §n`` sections and markdown links.
 
-Sources: ``README.md``, ``docs/*.md`` (``CHANGELOG.md`` is history and may name what is gone) and the
-module docstrings of ``ringdamper/`` (packages included). Paths under ``results/`` are generated and
+Sources: ``README.md``, ``docs/*.md`` and ``docs/investigations/*.md`` (``CHANGELOG.md`` is history
+and may name what is gone; the tables under ``docs/calibration/`` are generated) and the module
+docstrings of ``ringdamper/`` (packages included). Paths under ``results/`` are generated and
 exempt. A dotted name is resolved by importing its module and reading the attribute, except in the
 modules of :data:`NO_IMPORT`, which run Snakemake on import and are read with :mod:`ast` instead.
 """
@@ -323,7 +324,8 @@ def _module_name(file: Path) -> str:
 def sources() -> dict[str, tuple[str, str]]:
     """Every documentation text by its file: (text, base of its relative references)."""
     texts = {}
-    for file in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]:
+    pages = [*sorted((ROOT / "docs").glob("*.md")), *sorted((ROOT / "docs" / "investigations").glob("*.md"))]
+    for file in [ROOT / "README.md", *pages]:
         texts[str(file.relative_to(ROOT))] = (file.read_text(), str(file.parent.relative_to(ROOT)))
     for file in sorted((ROOT / "ringdamper").rglob("*.py")):
         docstring = ast.get_docstring(_tree(file), clean=False)

@@ -1,2 +1,2 @@
-"""Linear modal analysis of the rotating blisk + ring (paper §2.3): the methods (:mod:`.analysis`) and
-the modal stage of the campaign (:mod:`.stage`)."""
+"""Linear modal analysis of the rotating blisk + ring (paper §2.3): ND and Campbell diagrams, mode
+families, the engine-order crossing, and the campaign's modal stage."""

@@ -12,10 +12,10 @@ frame (n, t1, t2) of the relative displacement d = u_ring − u_blisk (d_n > 0 c
 
 Time discretisation: the slider follows the *play operator* ``w_k = proj_{[d_k ± r_k]}(w_{k−1})``
 with ``r_k = μ N_k / kt``, exact at the samples for inputs monotone between samples. The slider
-memory before the period is an input: ``w = 0`` at the static equilibrium (zero tangential force
-there, so stuck contacts behave as the linear springs ``(kn, kt, kt)`` of the linearised stuck
-system); along a continuation it is the periodic state of the previous solution (a quasi-static
-history: a pair that re-sticks keeps the slider where it stopped).
+memory before the period is an input, ``w = 0`` by default: the static equilibrium (zero tangential
+force there, so stuck contacts behave as the linear springs ``(kn, kt, kt)`` of the linearised stuck
+system). The harmonic balance passes that default at every evaluation, so a solution does not depend
+on the continuation path (docs/nonlinear_core.md §2).
 
 Periodic state ("march until periodic", docs/design.md §2): for the Jenkins law the map "one period" is a
 clamp ``w ↦ clip(w, A, B)`` (a composition of clamps is a clamp), which is idempotent, so the state

@@ -1,4 +1,4 @@
-"""The time-domain check of the EPMC (docs/nonlinear_core.md, "Time-domain check of the EPMC"):
+"""The time-domain check of the EPMC (docs/investigations/epmc_time_domain.md):
 harmonic-balance backbones at several H against time-domain shooting."""
 from __future__ import annotations
 

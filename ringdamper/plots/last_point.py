@@ -1,4 +1,4 @@
-"""The last-point study's figure (docs/nonlinear_core.md, "The last grid amplitude"): the default
+"""The last-point study's figure (docs/investigations/last_point.md): the default
 ring's backbone at the top of the amplitude grid, campaign trace against fine trace, with the
 normal-force ratio n_min."""
 from __future__ import annotations

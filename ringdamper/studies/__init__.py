@@ -1,8 +1,3 @@
-"""Studies that fix the model's choices, run by ``make studies`` into ``results/studies/``: the hub
-thickness calibration (:mod:`.hub_calibration`), the contact calibration (:mod:`.contact_calibration`),
-the contact state of the reference rings (:mod:`.contact_state`), the mesh convergence
-(:mod:`.mesh_convergence`), the reduction convergence (:mod:`.reduction_convergence`) and the last
-grid amplitude (:mod:`.last_point`); with ``make fidelity``, the fidelity dials (:mod:`.fidelity`)
-and the methods' limits (:mod:`.method_limits`); by hand, the EPMC's time-domain check
-(:mod:`.epmc_time_domain`). A study returns its data (rows, datasets); the rule scripts draw its
-figures from them."""
+"""Studies that fix the model's choices (``make studies`` into ``results/studies/``, ``make fidelity``),
+each returning its data (rows, datasets) for the rule scripts and ``plots`` to write and draw
+(docs/model.md, docs/calibration.md, docs/fidelity.md, docs/method_limits.md)."""

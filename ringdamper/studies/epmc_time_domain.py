@@ -1,5 +1,5 @@
 """Is a rising EPMC frequency the EPMC's answer or a harmonic-balance artefact?
-(docs/nonlinear_core.md §4.4, "Time-domain check of the EPMC").
+(docs/investigations/epmc_time_domain.md).
 
 For a structure with Jenkins contacts, the backbone of the first stuck mode is traced by the HBM
 at several harmonic truncations H (:func:`ringdamper.nonlinear.epmc.epmc`) and, at every

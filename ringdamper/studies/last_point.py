@@ -1,5 +1,4 @@
-"""Why the campaign's backbones rise at the top of the amplitude grid (docs/nonlinear_core.md, "The
-last grid amplitude").
+"""Why the campaign's backbones rise at the top of the amplitude grid (docs/investigations/last_point.md).
 
 On the default ring γ and ζ jump between the last two grid amplitudes (α = 2.46e-4 → 3.0e-4 kg^½ m).
 The study tells a physical change of the contact state from a numerical artefact: it traces the

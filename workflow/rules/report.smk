@@ -88,7 +88,7 @@ rule report_tables:
 # The charts of the studies (`make studies`, `make fidelity`: minutes to hours of CPU, not part of
 # `all`) that were run into this results folder: `snakemake --report` with the target `study_charts`
 # beside `all` (`make report`) shows them; a study not run leaves its charts out, and no study job
-# runs for the report (docs/design.md, "Report").
+# runs for the report (docs/design.md, "The report and the studies' charts").
 STUDY_CHARTS = [
     *rules.study_contact_figures.output,
     rules.study_contact_state.output.search,

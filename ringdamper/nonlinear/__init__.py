@@ -13,5 +13,7 @@ method chain:
 * :mod:`.normalisation`: the paper's normalised frequency;
 * :mod:`.stage`: the dNNM stage of one geometry (reduced.nc + static.nc -> dnnm.nc).
 
+Test systems: :mod:`.jenkins_chains`, the seeded family of spring–mass chains with Jenkins elements.
+
 Import-free, so that ``ringdamper.nonlinear.fourier`` loads without the rest.
 """

@@ -16,10 +16,11 @@ $(STAMP): pyproject.toml
 	@touch $(STAMP)
 
 # the whole campaign (profiles/default: 2 cores), then its report (every figure and table, from the
-# results alone). On a SLURM cluster: pip install -e ".[cluster]"; snakemake --workflow-profile profiles/slurm
+# results alone, and the charts of the studies run into results/).
+# On a SLURM cluster: pip install -e ".[cluster]"; snakemake --workflow-profile profiles/slurm
 campaign: $(STAMP)
 	$(BIN)/snakemake --workflow-profile profiles/default --cores $(CORES)
-	$(BIN)/snakemake --cores $(CORES) --report results/report.html
+	$(BIN)/snakemake --cores $(CORES) --report results/report.html all study_charts
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q -n 2 --dist loadgroup --durations=15
@@ -34,26 +35,20 @@ bench: $(STAMP)
 	$(BIN)/python -m ringdamper.bench --out results/benchmarks
 
 # the studies behind the model's choices (config.yaml `studies:`), then their committed tables and figures
+# (docs/artifacts.yaml, route `studies`)
 studies: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --keep-going studies
-	cp results/studies/contact_calibration/*.csv results/studies/contact_calibration/tables.md docs/calibration/
-	cp results/studies/hub_calibration.yaml results/studies/mesh_convergence.csv results/studies/reduction_convergence.md docs/calibration/
-	cp results/studies/contact_calibration/*.png docs/figures/
-	cp results/studies/contact_state/*.csv docs/calibration/
-	cp results/studies/contact_state/*.png docs/figures/
-	cp results/studies/last_point/last_point_separation.png docs/figures/
+	$(BIN)/python -m ringdamper.publish studies
 
 # the fidelity study (config.yaml `fidelity:`; not part of `campaign`), then its committed figures and tables
+# (docs/artifacts.yaml, route `fidelity`)
 fidelity: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --keep-going fidelity
-	mkdir -p docs/fidelity
-	cp results/fidelity/fidelity_*.png docs/figures/
-	cp results/fidelity/dials.csv results/fidelity/mesh.csv results/fidelity/mesh_limits.csv results/fidelity/mesh_backbone.csv \
-	   results/fidelity/surrogate.csv results/fidelity/forced.csv results/fidelity/summary.yaml docs/fidelity/
-	for f in results/fidelity/limits/*.png; do cp $$f docs/figures/method_limits_$$(basename $$f); done
+	$(BIN)/python -m ringdamper.publish fidelity
 
+# the report of the campaign, with the charts of the studies run into results/ (target study_charts)
 report: $(STAMP)
-	$(BIN)/snakemake --cores $(CORES) --report results/report.html
+	$(BIN)/snakemake --cores $(CORES) --report results/report.html all study_charts
 
 # ruff (pyproject.toml [tool.ruff]) on the Python, Snakemake's linter on the rules
 lint: $(STAMP)

@@ -25,9 +25,9 @@ include: "workflow/rules/studies.smk"
 include: "workflow/rules/surrogate.smk"
 include: "workflow/rules/sensitivity.smk"
 include: "workflow/rules/frf.smk"
-include: "workflow/rules/report.smk"
 include: "workflow/rules/limits.smk"
 include: "workflow/rules/fidelity.smk"
+include: "workflow/rules/report.smk"
 
 
 rule all:
@@ -52,4 +52,3 @@ rule all:
         f"{RESULTS}/surrogate/optimum_check.csv",
         f"{RESULTS}/tables/paper_comparison.csv",
         f"{RESULTS}/tables/validation_metrics.html",
-        rules.study_charts.output,

@@ -33,10 +33,6 @@ FILE_ENDINGS = frozenset({"nc", "vtu", "yaml", "yml", "csv", "png", "html", "md"
 #: ``ringdamper.fem.linalg.lowest_modes``.
 TOP_LEVEL = frozenset(p.stem for p in (ROOT / "ringdamper").iterdir()
                       if (p.suffix == ".py" and p.stem != "__init__") or (p / "__init__.py").exists())
-#: Stale references tolerated in a page that is being rewritten on another branch; every other
-#: reference of that page must resolve. Remove an entry once its page names the rules it runs.
-PENDING = {"docs/calibration.md": frozenset({"rule contact_calibration", "rule contact_state",
-                                             "rule contact_state_backbone"})}
 
 
 @dataclass(frozen=True)
@@ -341,7 +337,7 @@ def unresolved(text: str, base: str) -> list[str]:
 @pytest.mark.parametrize("source", sorted(sources()))
 def test_every_reference_resolves(source):
     text, base = sources()[source]
-    missing = [ref for ref in unresolved(text, base) if ref not in PENDING.get(source, ())]
+    missing = list(unresolved(text, base))
     assert not missing, f"{source} names what does not exist:\n" + "\n".join(missing)
 
 

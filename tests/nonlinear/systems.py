@@ -141,29 +141,3 @@ def assemble_full(n_sectors, M0, M1, K0, K1):
         M[b, a] += M1.T
         K[b, a] += K1.T
     return M, K
-
-
-def jenkins_chain(seed: int, H: int = 1):
-    """Random fixed–fixed spring–mass chain (1–5 masses, ground springs at both ends) with 1–3
-    Jenkins elements at constant normal load, each between a mass and the ground or between two
-    neighbouring masses (``numpy.random.default_rng(seed)``; springs 0.4–1.2, masses 0.8–1.8,
-    kt 5–30, preloads N0 0.3–2.0, μ = 1, kn = 1: strong, strongly non-proportional friction).
-    Forced at the first mass, observed at the last."""
-    rng = np.random.default_rng(seed)
-    n = int(rng.integers(1, 6))
-    springs = rng.uniform(0.4, 1.2, n + 1)
-    M = np.diag(rng.uniform(0.8, 1.8, n))
-    K = np.diag(springs[:-1] + springs[1:]) - np.diag(springs[1:-1], -1) - np.diag(springs[1:-1], 1)
-    rows = []
-    for _ in range(int(rng.integers(1, 4))):
-        w = np.zeros(n)
-        i = int(rng.integers(0, n))
-        w[i] = 1.0
-        if i > 0 and rng.random() < 0.5:                     # between masses i − 1 and i
-            w[i - 1] = -1.0
-        rows += [np.zeros(n), w, np.zeros(n)]
-    npairs = len(rows) // 3
-    st = Structure.real(M, K, np.array(rows), np.eye(n)[-1], np.eye(n)[0], H=H)
-    contacts = FrictionContacts(kn=np.ones(npairs), kt=rng.uniform(5.0, 30.0, npairs), mu=1.0,
-                                N0=rng.uniform(0.3, 2.0, npairs), gap=0.0)
-    return st, contacts

@@ -1,5 +1,5 @@
 """Randomised family for the continuation drivers (``natural_then_arclength`` with its
-``arclength`` part): 200 seeded spring–mass chains with Jenkins elements (``systems.jenkins_chain``:
+``arclength`` part): 200 seeded spring–mass chains with Jenkins elements (``ringdamper.nonlinear.jenkins_chains``:
 1–5 masses, 1–3 elements, strong, non-proportional friction whose EPMC backbones fold in α, often
 twice, and turn at stick–slip corners). Every backbone traced with the default steps must be the
 one traced with tiny steps (maximum step 0.05 instead of 0.5, nominal tangent turn 0.05 instead
@@ -14,23 +14,11 @@ import numpy as np
 import pytest
 
 from ringdamper.nonlinear.continuation import StepControl
-from ringdamper.nonlinear.epmc import epmc, linear_limit
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.epmc import epmc
+from ringdamper.nonlinear.jenkins_chains import ISSUE_GRID, OPTIONS, SEEDS, chain_grid, issue_chain, jenkins_chain
 from ringdamper.status import Status
 
-from .systems import jenkins_chain
-
-SEEDS = range(200)
 TINY = StepControl(initial=0.05, minimum=1e-4, maximum=0.05, turn=0.05)
-OPTIONS = dict(H=1, nt=64, tol=1e-5)
-
-
-def chain_grid(st, c, lo=-0.15, hi=0.65, n=6):
-    """Amplitudes from just below the first slip (``linear_limit`` of the stuck mode) to 10^hi
-    times it, log-spaced: the range where the family's backbones fold."""
-    _, phi = st.stuck_modes(c.stuck_stiffness().ravel())
-    return linear_limit(st, c, phi[:, 0]) * np.logspace(lo, hi, n)
 
 
 def state_norm(bb):
@@ -65,23 +53,6 @@ def test_default_steps_trace_the_tiny_step_branch_on_200_chains():
             stopped.append(seed)
     assert not jumps, "\n".join(jumps)
     assert len(stopped) <= 0.03 * len(SEEDS), stopped
-
-
-@lru_cache(maxsize=1)
-def issue_chain():
-    """The 3-DoF chain whose default arc-length steps used to cross a tight fold in α onto a
-    branch of higher frequency (ω 0.997 → 1.104) and walk back to α ≈ 1e-45."""
-    ki = np.array([0.5, 0.6, 1.1, 0.8])
-    M = np.diag([1.5, 1.2, 1.7])
-    K = np.diag(ki[:-1] + ki[1:]) - np.diag(ki[1:-1], -1) - np.diag(ki[1:-1], 1)
-    w1, w2 = np.array([1, 0, 0.]), np.array([-1, 1, 0.])
-    B = np.array([0 * w1, w1, 0 * w1, 0 * w2, w2, 0 * w2])
-    c = FrictionContacts(kn=[1., 1.], kt=[24., 16.], mu=1.0, N0=[0.6, 1.8], gap=0.0)
-    st = Structure.real(M, K, B, response=np.array([0, 0, 1.]), force=np.array([0, 1, 0.]), H=1)
-    return st, c
-
-
-ISSUE_GRID = 10 ** np.arange(-1.5, 1.51, 0.25)
 
 
 @lru_cache(maxsize=1)

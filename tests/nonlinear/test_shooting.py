@@ -31,6 +31,7 @@ import pytest
 
 from ringdamper.nonlinear.epmc import epmc, linear_limit
 from ringdamper.nonlinear.friction import FrictionContacts
+from ringdamper.nonlinear.jenkins_chains import chain_grid, jenkins_chain
 from ringdamper.nonlinear.shooting import (
     JenkinsTimeModel,
     hbm_state,
@@ -43,8 +44,7 @@ from ringdamper.nonlinear.shooting import (
 from ringdamper.nonlinear.truncation import THRESHOLD, highest_harmonic_fraction
 from ringdamper.status import Status
 
-from .systems import cyclic_structure, describing_function, jenkins_chain, multi_dof, one_dof
-from .test_continuation_family import chain_grid
+from .systems import cyclic_structure, describing_function, multi_dof, one_dof
 
 RISING_SEED = 149
 SPURIOUS_SEED = 179

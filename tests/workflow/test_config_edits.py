@@ -36,7 +36,7 @@ def _scale(section, key, factor):
 @pytest.mark.slow
 def test_a_friction_edit_reruns_static_and_dnnm_and_everything_downstream(small_campaign, every_job, tmp_path):
     jobs = dry_run_jobs(small_campaign, _edited(tmp_path, _scale("contact", "friction_coefficient", 1.5)))
-    upstream_or_beside = {"samples", "reduced", "study_charts"}
+    upstream_or_beside = {"samples", "reduced"}
     assert {rule: n for rule, n in jobs.items() if rule != "reduced"} == {
         rule: n for rule, n in every_job.items() if rule not in upstream_or_beside}
     assert jobs["static"] == jobs["dnnm"] == every_job["dnnm"]       # every geometry's static and dNNM

@@ -1,15 +1,15 @@
 """Reproducible to the bit, with provenance: a second run of the small campaign from scratch, on one
 core, gives the same arrays as the session's run on two (every NetCDF variable, CSV table and YAML
 file); every NetCDF records its provenance; the report is regenerated from a copy of the results
-alone."""
+alone, with the charts of the studies run into them."""
 import shutil
 
 import pytest
 import xarray as xr
 
 from ringdamper.io import provenance
+from tests.snakemake_run import REPO, effective_config, run_snakemake
 from tests.snakemake_run import SMALL_CONFIG as CONFIG
-from tests.snakemake_run import effective_config, run_snakemake
 from tools.compare_results import differences
 
 
@@ -57,3 +57,22 @@ def test_the_report_is_regenerated_from_the_results_alone(small_campaign, tmp_pa
     assert all(p.name in html for p in (results / "figures").glob("*.png"))
     dry = run_snakemake(results, CONFIG, "--dry-run")
     assert "Nothing to be done" in dry.stdout + dry.stderr
+
+
+@pytest.mark.slow
+def test_the_report_shows_the_study_charts_run_into_the_results(small_campaign, tmp_path):
+    """A study chart in the results folder (a method-limits chart where its rule writes it) appears in
+    the report built with the target ``study_charts`` (as ``make report`` builds it), with its
+    caption, and no job runs for it; the campaign's own report, without the chart, shows none."""
+    assert "method_limits_" not in (small_campaign / "report.html").read_text()
+    results = tmp_path / "results"
+    shutil.copytree(small_campaign, results, ignore=shutil.ignore_patterns("report.html"))
+    chart = results / "fidelity" / "limits" / "method_limits_stability.png"
+    chart.parent.mkdir(parents=True)
+    shutil.copyfile(REPO / "docs" / "figures" / "method_limits_stability.png", chart)
+    run = run_snakemake(results, CONFIG, "--report", results / "report.html", "all", "study_charts")
+    assert run.returncode == 0, run.stderr[-3000:]
+    html = (results / "report.html").read_text()
+    assert "method_limits_stability.png" in html
+    assert "harmonic-balance Jacobian for a Duffing oscillator" in html       # its caption
+    assert not (results / "fidelity" / "limits" / "stability.nc").exists()

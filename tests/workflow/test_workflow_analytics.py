@@ -90,13 +90,11 @@ def test_forced_responses_and_table3(campaign, small_config):
 def test_report_holds_every_figure_and_table(campaign):
     html = (campaign / "report.html").read_text()
     figures = sorted(p.name for p in (campaign / "figures").glob("*.png"))
-    studies = sorted(p.name for p in (campaign / "figures" / "studies").glob("*.png"))
-    assert {"fidelity_dials.png", "fidelity_pareto.png", "method_limits_eebm_validity.png"} <= set(studies)
     tables = sorted(p.name for p in (campaign / "tables").glob("*.html"))
     assert {"optimum_maps.png", "optimum_backbones_frf.png", "optimum_surrogate_check.png"} <= set(figures)
     assert {"table3.html", "paper_comparison.html", "validation_metrics.html", "sobol_global.html",
             "sobol_local.html", "optimum.html", "optimum_check.html"} <= set(tables)
-    for name in figures + studies + tables:
+    for name in figures + tables:
         assert name in html, name
     comparison = pd.read_csv(campaign / "tables" / "paper_comparison.csv")
     assert comparison["paper source"].str.contains("§").all()

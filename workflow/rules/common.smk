@@ -1,5 +1,6 @@
-# Shared by the rules. The design of experiments is seeded and deterministic, so it is computed at
-# parse time: the DAG is static and a dry run lists every job (the `samples` rule writes the same table).
+# Shared by the rule files (what one rule file alone uses lives in that file). The design of
+# experiments is seeded and deterministic, so it is computed at parse time: the DAG is static and a dry
+# run lists every job (the `samples` rule writes the same table).
 import json
 
 import yaml
@@ -23,8 +24,6 @@ DATASET = ("sampling",) + DNNM
 SURROGATE = DATASET + ("surrogate",)
 EXPLORATION = SURROGATE + ("exploration",)
 SENSITIVITY = SURROGATE + ("sensitivity",)
-STUDY = DNNM + ("studies",)
-FIDELITY_SUMMARY = DNNM + ("frf", "sensitivity", "exploration", "fidelity")
 
 
 def sections(*names):
@@ -65,38 +64,6 @@ def geometry_ids():
 def scaled(mem_mb):
     """mem_mb of attempt 1, 2, ...: ``mem_mb`` times the attempt."""
     return lambda wildcards, attempt: mem_mb * attempt
-
-
-# The fidelity study's resources, from the committed measurements of the last `make fidelity` (docs/fidelity/*.csv; the
-# rules' convention of common.smk, with CPU instead of wall times: that run's walls were 3-10x its CPU
-# on the loaded machine): a dial case peaks at 792 MB and 223 s of chain CPU (H = 5 on the optimum);
-# a mesh level at the peak RSS of MESH_LEVEL_PEAK_MB (the 3x quadratic one 7.0 GB, 149 s); the
-# surrogate study's 15 designs fit in 224 s of CPU.
-MESH_LEVEL_PEAK_MB = {(1, 1): 199, (2, 1): 258, (3, 1): 667, (1, 2): 322, (2, 2): 1713, (3, 2): 6967}
-
-
-# Peak RSS (MB) of the whole chain on the default ring at H = 1 (fidelity.mesh_backbone) per mesh
-# refinement factor (measured: the reduction of the refined sector dominates; chain CPU 6 s and 195 s).
-MESH_BACKBONE_PEAK_MB = {1: 443, 2: 5302}
-
-
-def twice_the_peak(peak_mb):
-    """mem_mb of jobs each measured at a peak RSS of ``peak_mb(wildcards)`` MB: twice that, per
-    attempt."""
-    return lambda wildcards, attempt: int(2 * peak_mb(wildcards) * attempt)
-
-
-def mesh_level_peak_mb(wildcards):
-    """The measured peak of the mesh level (of the 3x quadratic one if not measured)."""
-    level = int(wildcards.factor), int(wildcards.order)
-    return MESH_LEVEL_PEAK_MB.get(level, MESH_LEVEL_PEAK_MB[3, 2])
-
-
-def mesh_backbone_peak_mb(wildcards):
-    """The measured peak of the refinement factor; beyond the measured ones, that of the largest scaled
-    with the element count, factor³."""
-    factor, largest = int(wildcards.factor), max(MESH_BACKBONE_PEAK_MB)
-    return MESH_BACKBONE_PEAK_MB.get(factor, MESH_BACKBONE_PEAK_MB[largest] * (factor / largest) ** 3)
 
 
 # The optimum found on the surrogate is a real geometry: gid ``optimum``, whose kappa is only known
@@ -141,20 +108,7 @@ def reference_gids():
     return {label: gid_of(k) for label, k in REFERENCE_RINGS.items()}
 
 
-def one_at_a_time_gids():
-    """Default ring and the six one-at-a-time extremes of Fig. 11 (label -> gid)."""
-    return {label: gid_of(k) for label, k in REFERENCE_RINGS.items() if label != "paper optimum"}
-
-
 def frf_curves(gid):
     """Forced-response curves of geometry ``gid``, one per forcing level (1, 2, ...)."""
     levels = range(1, len(config["frf"]["target_amplitudes"]) + 1)
     return [f"{RESULTS}/frf/{gid}/gamma_{level}.nc" for level in levels]
-
-
-def study_harmonics(config):
-    """Harmonics the studies' default-ring reduced model needs: the contact calibration's and the
-    last-point study's largest H (at least the campaign's)."""
-    studies = config.get("studies", {})
-    return max([config["dnnm"]["n_harmonics"], *studies.get("contact_calibration", {}).get("harmonics", []),
-                studies.get("last_point", {}).get("n_harmonics", 0)])

@@ -5,6 +5,23 @@ from ringdamper.studies.fidelity.dials import dial_cases
 FIDELITY = f"{RESULTS}/fidelity"
 FIDELITY_CASES = dial_cases(config) if "fidelity" in config else []
 MESH_BACKBONE_FACTORS = config.get("fidelity", {}).get("mesh_backbone", {}).get("factors", [])
+FIDELITY_SUMMARY = DNNM + ("frf", "sensitivity", "exploration", "fidelity")  # sections (common.smk)
+
+
+# The fidelity study's resources, from the committed measurements of the last `make fidelity` (docs/fidelity/*.csv; the
+# rules' convention of common.smk, with CPU instead of wall times: that run's walls were 3-10x its CPU
+# on the loaded machine): a dial case peaks at 792 MB and 223 s of chain CPU (H = 5 on the optimum);
+# a mesh level at the peak RSS of MESH_LEVEL_PEAK_MB (the 3x quadratic one 7.0 GB, 149 s); the
+# surrogate study's 15 designs fit in 224 s of CPU.
+MESH_LEVEL_PEAK_MB = {(1, 1): 199, (2, 1): 258, (3, 1): 667, (1, 2): 322, (2, 2): 1713, (3, 2): 6967}
+
+
+# Peak RSS (MB) of the whole chain on the default ring at H = 1 (fidelity.mesh_backbone) per mesh
+# refinement factor (measured: the reduction of the refined sector dominates; chain CPU 6 s and 195 s);
+# beyond the measured factors, that of the largest scaled with the element count, factor³.
+MESH_BACKBONE_PEAK_MB = {1: 443, 2: 5302}
+MESH_BACKBONE_PEAKS = {factor: MESH_BACKBONE_PEAK_MB.get(factor, MESH_BACKBONE_PEAK_MB[2] * (factor / 2) ** 3)
+                       for factor in MESH_BACKBONE_FACTORS}
 
 
 rule fidelity:
@@ -49,7 +66,9 @@ rule fidelity_mesh_level:
         config=sections(*MODAL, "fidelity.mesh_families"),
     threads: 1
     resources:
-        mem_mb=twice_the_peak(mesh_level_peak_mb),
+        # twice the measured peak of the level (of the 3x quadratic one if not measured), per attempt
+        mem_mb=lambda wildcards, attempt: 2 * attempt * MESH_LEVEL_PEAK_MB.get(
+            (int(wildcards.factor), int(wildcards.order)), MESH_LEVEL_PEAK_MB[3, 2]),
         runtime=25,
     log:
         log_file("fidelity/mesh_{factor}_{order}"),
@@ -72,7 +91,7 @@ rule fidelity_mesh_backbone_case:
         config=sections(*DNNM, "fidelity.mesh_backbone"),
     threads: 1
     resources:
-        mem_mb=twice_the_peak(mesh_backbone_peak_mb),
+        mem_mb=lambda wildcards, attempt: int(2 * attempt * MESH_BACKBONE_PEAKS[int(wildcards.factor)]),
         runtime=60,
     log:
         log_file("fidelity/mesh_backbone_{factor}"),
@@ -202,9 +221,12 @@ rule fidelity_summary:
         surrogate=f"{FIDELITY}/surrogate.csv",
     output:
         summary=f"{FIDELITY}/summary.yaml",
-        dials=report(f"{FIDELITY}/fidelity_dials.png", category="Fidelity"),
-        mesh=report(f"{FIDELITY}/fidelity_mesh.png", category="Fidelity"),
-        pareto=report(f"{FIDELITY}/fidelity_pareto.png", category="Fidelity"),
+        dials=report(f"{FIDELITY}/fidelity_dials.png", category="Fidelity and method limits",
+                     caption="../report/fidelity_dials.rst"),
+        mesh=report(f"{FIDELITY}/fidelity_mesh.png", category="Fidelity and method limits",
+                    caption="../report/fidelity_mesh.rst"),
+        pareto=report(f"{FIDELITY}/fidelity_pareto.png", category="Fidelity and method limits",
+                      caption="../report/fidelity_pareto.rst"),
     params:
         config=sections(*FIDELITY_SUMMARY),
         n_geometries=len(geometry_ids()),

@@ -11,7 +11,7 @@ LIMITS = f"{RESULTS}/fidelity/limits"
 rule method_limits:
     input:
         expand(f"{LIMITS}/{{study}}.nc", study=LIMIT_STUDIES),
-        expand(f"{LIMITS}/{{study}}.png", study=LIMIT_STUDIES),
+        expand(f"{LIMITS}/method_limits_{{study}}.png", study=LIMIT_STUDIES),
 
 
 rule limits_study:
@@ -19,7 +19,8 @@ rule limits_study:
         lambda wc: [f"{RESULTS}/campaign/dataset.nc"] if wc.study == "kriging_coverage" else [],
     output:
         nc=f"{LIMITS}/{{study}}.nc",
-        png=f"{LIMITS}/{{study}}.png",
+        png=report(f"{LIMITS}/method_limits_{{study}}.png", category="Fidelity and method limits",
+                   caption="../report/method_limits.rst"),
     wildcard_constraints:
         study="|".join(LIMIT_STUDIES),
     params:

@@ -85,27 +85,24 @@ rule report_tables:
         "../../scripts/report_tables.py"
 
 
-# The charts of the fidelity study, the method-limit studies, the last-point analysis and the EPMC's
-# time-domain check are measured by `make fidelity`, `make studies` and `python -m
-# tools.epmc_time_domain` (minutes to hours of CPU, not part of the campaign) and committed under
-# docs/figures/; the report shows the committed charts beside the campaign's own figures.
-STUDY_CHARTS = ("fidelity_dials", "fidelity_mesh", "fidelity_pareto", "method_limits_eebm_validity",
-                "method_limits_harmonics", "method_limits_kriging_coverage", "method_limits_stability",
-                "last_point_separation", "epmc_time_domain")
+# The charts of the studies (`make studies`, `make fidelity`: minutes to hours of CPU, not part of
+# `all`) that were run into this results folder: `snakemake --report` with the target `study_charts`
+# beside `all` (`make report`) shows them; a study not run leaves its charts out, and no study job
+# runs for the report (docs/design.md, "The report and the studies' charts").
+STUDY_CHARTS = [
+    *rules.study_contact_figures.output,
+    rules.study_contact_state.output.search,
+    rules.study_contact_state_backbone.output.figure,
+    rules.study_last_point.output.figure,
+    rules.epmc_time_domain.output.figure,
+    rules.fidelity_summary.output.dials,
+    rules.fidelity_summary.output.mesh,
+    rules.fidelity_summary.output.pareto,
+    *expand(rules.limits_study.output.png, study=LIMIT_STUDIES),
+]
 
 
 rule study_charts:
     input:
-        **{name: f"docs/figures/{name}.png" for name in STUDY_CHARTS},
-    output:
-        **{name: report(f"{RESULTS}/figures/studies/{name}.png", category="Fidelity and method limits",
-                        caption=f"../report/{name}.rst") for name in STUDY_CHARTS},
+        [chart for chart in STUDY_CHARTS if Path(chart).exists()],
     localrule: True
-    log:
-        log_file("study_charts"),
-    params:
-        folder=lambda wildcards, output: Path(output[0]).parent,
-    conda:
-        "../../envs/ringdamper.yaml"
-    shell:
-        "cp -v {input:q} {params.folder:q} > {log:q} 2>&1"

@@ -8,6 +8,16 @@ from ringdamper.studies.contact_calibration.dataset import FIGURE_STAGES, STAGES
 
 STUDIES = f"{RESULTS}/studies"
 STUDY_REDUCED = f"{STUDIES}/default_reduced.nc"
+EPMC_CHECK = f"{STUDIES}/epmc_time_domain"
+EPMC_CHECK_TABLES = ("rise", "comparison", "return_179", "viscous_149", "steps", "issue_chain")
+STUDY = DNNM + ("studies",)  # the configuration sections of the studies' outputs (common.smk)
+
+
+# Harmonics the studies' default-ring reduced model needs: the contact calibration's and the last-point
+# study's largest H (at least the campaign's).
+STUDY_HARMONICS = max([config["dnnm"]["n_harmonics"],
+                       *config.get("studies", {}).get("contact_calibration", {}).get("harmonics", []),
+                       config.get("studies", {}).get("last_point", {}).get("n_harmonics", 0)])
 
 
 rule studies:
@@ -22,6 +32,8 @@ rule studies:
         f"{STUDIES}/contact_state/contact_state_designs.csv",
         f"{STUDIES}/contact_state/contact_state_backbone.csv",
         f"{STUDIES}/last_point/last_point_separation.png",
+        expand(f"{EPMC_CHECK}/{{table}}.csv", table=EPMC_CHECK_TABLES),
+        f"{EPMC_CHECK}/epmc_time_domain.png",
 
 
 rule study_reduced:
@@ -29,7 +41,7 @@ rule study_reduced:
         STUDY_REDUCED,
     params:
         config=sections(*REDUCED, "dnnm", "studies"),
-        harmonics=study_harmonics(config),
+        harmonics=STUDY_HARMONICS,
     threads: 1
     resources:
         mem_mb=scaled(1000),
@@ -227,7 +239,8 @@ rule study_last_point:
     output:
         campaign=f"{STUDIES}/last_point/campaign.nc",
         fine=f"{STUDIES}/last_point/fine.nc",
-        figure=report(f"{STUDIES}/last_point/last_point_separation.png", category="Studies"),
+        figure=report(f"{STUDIES}/last_point/last_point_separation.png", category="Studies",
+                      caption="../report/last_point_separation.rst"),
     params:
         config=sections(*STUDY),
     threads: 1
@@ -242,3 +255,25 @@ rule study_last_point:
         "../../envs/ringdamper.yaml"
     script:
         "../../scripts/study_last_point.py"
+
+
+# The EPMC against time-domain shooting on the Jenkins chain family (docs/nonlinear_core.md,
+# "Time-domain check of the EPMC"): small analytic systems, no configuration. Measured on the shared
+# 2-core machine at load 16: 400 s of CPU (40 min wall), peak RSS 167 MB.
+rule epmc_time_domain:
+    output:
+        **{table: f"{EPMC_CHECK}/{table}.csv" for table in EPMC_CHECK_TABLES},
+        figure=report(f"{EPMC_CHECK}/epmc_time_domain.png", category="Studies",
+                      caption="../report/epmc_time_domain.rst"),
+    threads: 1
+    resources:
+        mem_mb=scaled(400),
+        runtime=70,
+    log:
+        log_file("studies/epmc_time_domain"),
+    benchmark:
+        benchmark_file("studies/epmc_time_domain")
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/epmc_time_domain.py"

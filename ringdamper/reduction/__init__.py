@@ -4,16 +4,16 @@ reduction; the reduced.nc contract and the reduction stage of one geometry.
 """
 
 from .reduced import (
-                      ModalBasis,
-                      ReducedHarmonic,
-                      ReducedSector,
-                      eigenfrequencies,
-                      modal_basis,
-                      modal_stuck_frequencies,
-                      reduce_sector,
-                      reduced_dataset,
-                      stuck_frequencies,
-                      stuck_matrices,
+    ModalBasis,
+    ReducedHarmonic,
+    ReducedSector,
+    eigenfrequencies,
+    modal_basis,
+    modal_stuck_frequencies,
+    reduce_sector,
+    reduced_dataset,
+    stuck_frequencies,
+    stuck_matrices,
 )
 
 __all__ = ["ModalBasis", "ReducedHarmonic", "ReducedSector",

@@ -8,9 +8,10 @@ pseudo-arc-length steps until ω passes ``omega_end`` (status 1 if it turns back
 ``omega_start`` instead). A rigid-body hold of the ring lost within a failed step is pinned and
 the step retried, as in the EPMC (:meth:`ringdamper.nonlinear.condensed.CondensedHBM.pin_seen`). The
 resonance peak is the maximum of the response measure along the branch, refined between the
-neighbouring points by a bounded Brent search over the arc-length coordinate (each evaluation a
-converged solution on the hyperplane normal to the local tangent, its corrector started from one
-factorisation of the bordered Jacobian at the best point).
+neighbours of every sampled maximum near the largest (:func:`resonance_peak`) by a bounded Brent
+search over the arc-length coordinate (each evaluation a converged solution on the hyperplane
+normal to the local tangent, its corrector started from one factorisation of the bordered Jacobian
+at the sampled maximum).
 
 *Step control* (:data:`FORCED_STEPS`, docs/nonlinear_core.md §6). Near a resonance the response
 vector runs once round a Nyquist circle: in the scaled arc-length metric its unit tangent turns by

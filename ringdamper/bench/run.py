@@ -68,8 +68,9 @@ def _static_chain(config: dict) -> dict:
 
 def _geometry_chain(config: dict) -> dict:
     """The per-geometry chain on the default ring, one core: mesh -> static -> reduced -> dnnm
-    (H = 1, the campaign's H and 5), and one forced-response curve (H = 1) through the E-EBM
-    point of largest damping, with its peak against the E-EBM prediction."""
+    (H = 1, the campaign's H and 5), one forced-response curve (H = 1) through the E-EBM point of
+    largest damping, with its peak against the E-EBM prediction, and Table 3's forced responses
+    of the default ring at the campaign's H (points, seconds, peaks)."""
     from ringdamper.fem.model import build_model
     from ringdamper.geometry.sector import build_sector
     from ringdamper.nonlinear.stage import (
@@ -120,6 +121,8 @@ def _geometry_chain(config: dict) -> dict:
         out[f"dnnm_H{H}_zeta_max"] = float(np.nanmax(ds.zeta.values))
         backbones[H] = ds
     out["frf_H1"] = _default_frf(reduced, contacts, backbones[1], config)
+    out["frf_table3"] = _table3_frf(reduced, contacts, backbones[config["dnnm"]["n_harmonics"]], config,
+                                    w_default)
     times.update(out)
     times["chain_default_H_s"] = (times["mesh_model_s"] + times["static_s"] + times["reduced_s"]
                                   + out[f"dnnm_H{config['dnnm']['n_harmonics']}_s"])
@@ -138,6 +141,29 @@ def _default_frf(reduced, contacts, backbone, config: dict) -> dict:
                     2 * np.pi * float(backbone.frequency.values[mid]),
                     float(backbone.q_res_z.values[mid]), 1,
                     config["dnnm"]["structural_damping_ratio"], (0.985, 1.015))
+
+
+def _table3_frf(reduced, contacts, backbone, config: dict, omega_reference: float) -> list:
+    """Table 3's forced responses of the default ring (``frf`` section: the levels of the target
+    amplitudes, the band; the backbone's H, Nt and ζs), as the ``frf_curve`` rule computes them: per
+    level the points, wall and CPU seconds, status and the refined peak."""
+    from ringdamper.campaign.forced_check import EEBMBackbone, forced_curve, forcing_levels
+    from ringdamper.nonlinear.stage import structure_from_reduced
+
+    H, nt = config["dnnm"]["n_harmonics"], config["dnnm"]["n_time_samples"]
+    bb = EEBMBackbone.from_dnnm(backbone)
+    structure = structure_from_reduced(reduced, H)
+    rows = []
+    for level, gamma in enumerate(forcing_levels(bb, config["frf"]["target_amplitudes"]), 1):
+        t, c = time.perf_counter(), time.process_time()
+        ds = forced_curve(structure, contacts, bb, float(gamma), H=H, nt=nt,
+                          zeta_s=config["dnnm"]["structural_damping_ratio"], band=config["frf"]["frequency_band"],
+                          omega_reference=omega_reference)
+        rows.append({"level": level, "gamma_N": float(gamma), "points": int(ds.sizes["point"]),
+                     "seconds": time.perf_counter() - t, "cpu_seconds": time.process_time() - c,
+                     "status": int(ds.status), "peak_amplitude_m": float(ds.peak_amplitude),
+                     "peak_frequency_hz": float(ds.peak_frequency), "eebm_amplitude_m": float(ds.eebm_amplitude)})
+    return rows
 
 
 def _dynamics_synthetic(config: dict) -> dict:

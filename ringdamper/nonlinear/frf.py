@@ -8,8 +8,19 @@ pseudo-arc-length steps until ω passes ``omega_end`` (status 1 if it turns back
 ``omega_start`` instead). A rigid-body hold of the ring lost within a failed step is pinned and
 the step retried, as in the EPMC (:meth:`ringdamper.nonlinear.condensed.CondensedHBM.pin_seen`). The
 resonance peak is the maximum of the response measure along the branch, refined between the
-neighbouring points by a bounded Brent search over the arc-length coordinate (each evaluation a
-converged solution on the hyperplane normal to the local tangent). Every point's local stability
+neighbours of every sampled maximum near the largest (:func:`resonance_peak`) by a bounded Brent
+search over the arc-length coordinate (each evaluation a converged solution on the hyperplane
+normal to the local tangent, its corrector started from one factorisation of the bordered Jacobian
+at the sampled maximum).
+
+*Step control* (:data:`FORCED_STEPS`, docs/nonlinear_core.md §6). Near a resonance the response
+vector runs once round a Nyquist circle: in the scaled arc-length metric its unit tangent turns by
+about 2π across the peak, whatever the forcing. The arc length's rule "the tangent turns by about
+``turn`` per step" therefore sets the point count (≈ 2π/turn + the corners of stick–slip
+transitions). The forced curves use ``turn = 0.3`` rad (about 21 points round the circle, each
+chord within ``turn/2`` of the arc) with steps up to 0.3 and a growth of 2 on easy steps; every
+step still passes all the trusted-step tests of :mod:`ringdamper.nonlinear.continuation`, and the
+peak comes from the refinement, not from the spacing of the points. Every point's local stability
 comes from Hill's method on the full modal harmonic-balance Jacobian
 (:mod:`ringdamper.nonlinear.stability`).
 """
@@ -26,11 +37,15 @@ from ringdamper.nonlinear.continuation import StepControl, arclength
 from ringdamper.nonlinear.forced import ForcedProblem
 from ringdamper.nonlinear.fourier import default_nt
 from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.newton import newton
+from ringdamper.nonlinear.newton import Factorization, newton
 from ringdamper.nonlinear.response import response_harmonics, time_peak
 from ringdamper.nonlinear.stability import hill_exponents, is_stable, modal_hill_matrices
 from ringdamper.nonlinear.structure import Structure
 from ringdamper.status import Status
+
+#: Step control of the forced responses (module docstring): arc length in the scaled metric of
+#: :func:`forced_response`, nominal tangent turn 0.3 rad per step.
+FORCED_STEPS = StepControl(initial=0.05, minimum=1e-6, maximum=0.3, grow=2.0, turn=0.3)
 
 
 @dataclass
@@ -84,13 +99,13 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
     """Forced response at forcing amplitude ``gamma`` [N] from ``omega_start`` to ``omega_end``.
 
     ``steps`` controls the arc length measured on unknowns scaled by their running maxima (times
-    √n) and ω by ``|omega_end − omega_start|`` (default initial 0.02, min 1e-6, max 0.1). ``pole_band``
+    √n) and ω by ``|omega_end − omega_start|`` (default :data:`FORCED_STEPS`). ``pole_band``
     keeps modes with ``ω_r ∈ h·[ω_lo(1−pole_band), ω_hi(1+pole_band)]`` explicit. ``stability``:
     classify every point by Hill's method (:func:`point_stability`).
     """
     t0 = time.perf_counter()
     nt = default_nt(H) if nt is None else nt
-    steps = steps or StepControl(initial=0.02, minimum=1e-6, maximum=0.1)
+    steps = steps or FORCED_STEPS
     lo, hi = sorted((omega_start, omega_end))
     explicit = pole_modes(structure, H, lo * (1 - pole_band), hi * (1 + pole_band)) \
         if pole_band > 0 else None
@@ -173,11 +188,19 @@ def _measures(model: CondensedHBM, ev) -> tuple[float, float]:
     return abs(q[1]), time_peak(q)
 
 
-def resonance_peak(frf: FRF, measure: str = "peak", rtol: float = 1e-6) -> Peak:
+#: Local maxima of the sampled measure refined by :func:`resonance_peak`: those within this
+#: fraction of the largest sampled value (a narrow resonance between two coarse points can top a
+#: sampled maximum that is not the largest).
+PEAK_CANDIDATES = 0.05
+
+
+def resonance_peak(frf: FRF, measure: str = "peak", rtol: float = 1e-4) -> Peak:
     """Maximum of ``measure`` (``"peak"``: time-signal peak; ``"h1"``: first-harmonic magnitude)
-    along the branch, refined between the neighbours of the best point to ``rtol`` times their
-    distance in arc length (the measure is quadratic at its maximum, so its relative error is of
-    order ``rtol²``)."""
+    along the branch. Every interior local maximum of the sampled measure within
+    :data:`PEAK_CANDIDATES` of the largest is refined between its neighbours to ``rtol`` times
+    their distance in arc length (the measure is quadratic at its maximum, so its relative error
+    is of order ``rtol²``); the largest refined value wins (the largest sampled point, unrefined,
+    if no refinement beats it)."""
     if measure not in ("peak", "h1"):
         raise ValueError("measure must be 'peak' or 'h1'")
     if not frf.points:
@@ -186,17 +209,34 @@ def resonance_peak(frf: FRF, measure: str = "peak", rtol: float = 1e-6) -> Peak:
     values = frf.q_peak if k else frf.q_h1
     i = int(np.argmax(values))
     best = Peak(frf.omega[i], frf.q_h1[i], frf.q_peak[i], i, False, frf.points[i].z)
-    if i == 0 or i == len(frf.points) - 1:
-        return best
+    inner = np.arange(1, len(values) - 1)
+    local = inner[(values[inner] >= values[inner - 1]) & (values[inner] >= values[inner + 1])
+                  & (values[inner] >= (1 - PEAK_CANDIDATES) * values[i])]
+    for j in local[np.argsort(-values[local])]:
+        refined = _refine_peak(frf, int(j), k, rtol)
+        if refined is not None and (refined.q_peak if k else refined.q_h1) >= \
+                (best.q_peak if k else best.q_h1):
+            best = refined
+    return best
+
+
+def _refine_peak(frf: FRF, i: int, k: int, rtol: float) -> Peak | None:
+    """Maximum of measure ``k`` (0: first harmonic, 1: time-signal peak) between the neighbours of
+    the interior point ``i``: bounded Brent search over the arc-length coordinate σ on the
+    hyperplane normal to the tangent at ``i`` (each evaluation a converged solution, its corrector
+    started from one factorisation of the bordered Jacobian at ``i``). None if the neighbours do
+    not straddle the hyperplane or the solve fails."""
     model, problem = frf.problem.model, frf.problem
-    model.accept(frf.points[i].z[:-1], frf.points[i].payload)      # gauge state of the best point
+    model.accept(frf.points[i].z[:-1], frf.points[i].payload)      # gauge state of point i
     scale, t = frf.scales[i], frf.tangents[i]
     zi = frf.points[i].z
     plane = t / scale
     sig = [plane @ (frf.points[j].z - zi) for j in (i - 1, i + 1)]
     if not sig[0] < 0 < sig[1]:
-        return best
+        return None
     cache = {}
+    _, J, trivial, n_core, _ = problem.fun(zi, True)
+    start = Factorization(np.vstack([J, plane]), trivial, n_core)   # chord start of every solve
 
     def solve(sigma):
         j = i - 1 if sigma < 0 else i + 1
@@ -208,7 +248,7 @@ def resonance_peak(frf: FRF, measure: str = "peak", rtol: float = 1e-6) -> Peak:
             Jb = np.vstack([J, plane]) if jac else None
             return np.r_[r, plane @ (z - zi) - sigma], Jb, trivial, n_core, ev
 
-        res = newton(bordered, guess, lambda _: scale, frf.tol, frf.max_iter)
+        res = newton(bordered, guess, lambda _: scale, frf.tol, frf.max_iter, factorization=start)
         cache[sigma] = res
         return res
 
@@ -220,8 +260,6 @@ def resonance_peak(frf: FRF, measure: str = "peak", rtol: float = 1e-6) -> Peak:
                           options={"xatol": rtol * (sig[1] - sig[0])})
     res = cache.get(opt.x) or solve(opt.x)
     if not res.converged:
-        return best
+        return None
     h1, pk = _measures(model, res.payload)
-    if (pk if k else h1) < values[i]:
-        return best
     return Peak(res.z[-1], h1, pk, i, True, res.z)

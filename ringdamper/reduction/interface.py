@@ -61,10 +61,30 @@ def interface_transform(cm: CyclicModel, n_if: int) -> tuple[np.ndarray, np.ndar
     return T, w2
 
 
+def project(A: np.ndarray, T: np.ndarray, n_p: int, n_l: int) -> np.ndarray:
+    """``Tᴴ A T`` for the ``T`` of :func:`interface_transform`, made exactly Hermitian, by blocks:
+    only the face rows ``W = T[l, :n_p + n_if] = [S, Phi_if]`` of ``T`` are not identity or zero,
+    so ``A T = A[:, l] W + A[:, p]`` on the [p, r] columns and ``A[:, eta]`` on the others, and
+    ``Tᴴ (A T) = Wᴴ (A T)[l] + (A T)[p]`` on the [p, r] rows (a third of the dense product's
+    flops)."""
+    p, f, eta = slice(0, n_p), slice(n_p, n_p + n_l), slice(n_p + n_l, None)
+    n_pr = T.shape[1] - (A.shape[0] - n_p - n_l)
+    W = T[f, :n_pr]
+    AT = np.empty((A.shape[0], T.shape[1]), dtype=np.result_type(A, T))
+    AT[:, :n_pr] = A[:, f] @ W
+    AT[:, :n_p] += A[:, p]
+    AT[:, n_pr:] = A[:, eta]
+    out = np.empty((T.shape[1], T.shape[1]), dtype=AT.dtype)
+    out[:n_pr] = W.conj().T @ AT[f]
+    out[:n_p] += AT[p]
+    out[n_pr:] = AT[eta]
+    return 0.5 * (out + out.conj().T)
+
+
 def reduce_interface(cm: CyclicModel, n_if: int) -> InterfaceReduced:
     T, w2 = interface_transform(cm, n_if)
-    K = T.conj().T @ cm.K @ T
-    M = T.conj().T @ cm.M @ T
-    return InterfaceReduced(sigma=cm.sigma, K=0.5 * (K + K.conj().T), M=0.5 * (M + M.conj().T),
+    K = project(cm.K, T, cm.n_physical, cm.n_left)
+    M = project(cm.M, T, cm.n_physical, cm.n_left)
+    return InterfaceReduced(sigma=cm.sigma, K=K, M=M,
                             n_physical=cm.n_physical, n_if=n_if, n_fi=cm.n_fi,
                             omega2_interface=w2)

@@ -186,6 +186,13 @@ def _mesh_convergence(config: dict) -> dict:
     return {"levels": mesh_study(config, config["studies"]["mesh_convergence"]["levels"])}
 
 
+def _dnnm(config: dict) -> dict:
+    """dNNM CPU time of the default ring (and its profile) and of the hard rings (ringdamper.bench.dnnm)."""
+    from ringdamper.bench.dnnm import run
+
+    return run(config)
+
+
 def _surrogate(config: dict) -> dict:
     """Kriging (120 models) + 50³ grid + Sobol on synthetic data of the campaign's size."""
     from ringdamper.bench.surrogate import run
@@ -194,7 +201,7 @@ def _surrogate(config: dict) -> dict:
 
 
 BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "geometry_chain": _geometry_chain,
-              "dynamics_synthetic": _dynamics_synthetic, "static_synthetic": _static_synthetic,
+              "dnnm": _dnnm, "dynamics_synthetic": _dynamics_synthetic, "static_synthetic": _static_synthetic,
               "mesh_convergence": _mesh_convergence, "surrogate": _surrogate}
 
 

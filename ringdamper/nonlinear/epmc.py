@@ -23,9 +23,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
-from ringdamper.nonlinear.continuation import StepControl, natural_then_arclength
+from ringdamper.nonlinear.continuation import ContinuationPoint, NaturalResult, StepControl, natural_then_arclength
 from ringdamper.nonlinear.fourier import default_nt
 from ringdamper.nonlinear.friction import FrictionContacts
+from ringdamper.nonlinear.newton import newton
 from ringdamper.nonlinear.structure import Structure
 from ringdamper.status import Status
 
@@ -131,7 +132,8 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
          nt: int | None = None, mode: int = 0, omega_target: float | None = None,
          pole_band: float = 0.1, tol: float = 1e-8, max_iter: int = 20,
          steps: StepControl | None = None, gauge_reference: np.ndarray | None = None,
-         alpha_start: float | None = None, drift_tol: float = 1e-8) -> Backbone:
+         alpha_start: float | None = None, drift_tol: float = 1e-8,
+         stuck_shortcut: bool = True) -> Backbone:
     """dNNM backbone of one mode over the increasing modal-amplitude grid ``alpha``.
 
     ``mode``/``omega_target``: which linearised stuck mode of harmonic 1 to follow (index in
@@ -139,10 +141,13 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     harmonic ``h`` whose ω_r lies within ``±pole_band·hω₀`` of ``hω₀`` (ω₀ the stuck frequency;
     low side widened to ``(1 − 2·pole_band)``) are kept explicit. ``steps``: control in ``log α``
     (default initial 0.2, min 1e-4, max 0.5). ``gauge_reference``: position of zero modes while
-    they are undetermined at the first point (default 0). ``alpha_start``: where the continuation
-    starts from the linear stuck mode (default: half the smallest amplitude at which, in the
-    linear stuck mode, a pair would slip or open, if below ``alpha[0]``). ``drift_tol``: relative
-    size of the dropped rigid-body equilibrium above which a converged point gets status DRIFT.
+    they are undetermined at the first point (default 0). ``stuck_shortcut``: the grid points
+    below the stick limit of the linear stuck mode (:func:`stick_limit`) are that mode scaled by α,
+    without Newton (:func:`_stuck_points`). ``alpha_start``: where the continuation of the other
+    grid points starts from the linear stuck mode (default: just below the stick limit if that is
+    below the first of those points; half :func:`linear_limit` where the stick limit is zero).
+    ``drift_tol``: relative size of the dropped rigid-body equilibrium above which a converged
+    point gets status DRIFT.
     """
     t0 = time.perf_counter()
     alpha = np.asarray(alpha, float)
@@ -157,15 +162,22 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     model = CondensedHBM(structure, contacts, H, nt, explicit=explicit)
     if gauge_reference is not None:
         model.eta_ref = np.asarray(gauge_reference, float).copy()
-    if alpha_start is None:
-        alpha_start = min(alpha[0], 0.5 * linear_limit(structure, contacts, phi))
-    z0, phase_index = _initial_guess(model, phi, omega0, alpha_start)
+    _, phase_index = _initial_guess(model, phi, omega0, 1.0)
     problem = EPMCProblem(model, phase_index, drift_tol)
-    run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log(alpha), problem.scale,
-                                 steps, tol, max_iter, accept=problem.accept,
-                                 s_start=np.log(alpha_start), on_failure=problem.on_failure,
-                                 jump_mask=problem.jump_mask())
-    return _collect(run, model, alpha, problem, time.perf_counter() - t0)
+    onset = stick_limit(structure, contacts, phi)
+    stuck = _stuck_points(problem, phi, omega0, alpha[alpha < (1 - 1e-9) * onset]) if stuck_shortcut else []
+    rest = alpha[len(stuck):]
+    run = None
+    if rest.size:
+        if alpha_start is None:
+            below = (1 - 1e-6) * onset if onset > 0 else 0.5 * linear_limit(structure, contacts, phi)
+            alpha_start = min(rest[0], below)
+        z0, _ = _initial_guess(model, phi, omega0, alpha_start)
+        run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log(rest), problem.scale,
+                                     steps, tol, max_iter, accept=problem.accept,
+                                     s_start=np.log(alpha_start), on_failure=problem.on_failure,
+                                     jump_mask=problem.jump_mask())
+    return _collect(_joined(stuck, run, np.log(alpha)), model, alpha, problem, time.perf_counter() - t0)
 
 
 def _stuck_mode(structure, contacts, mode, omega_target):
@@ -183,6 +195,73 @@ def linear_limit(structure, contacts, phi):
         open_ = np.where(contacts.N0 > 0, contacts.N0 / contacts.kn, contacts.gap) / d[:, 0]
     lim = np.min(np.r_[slip[contacts.N0 > 0], open_, np.inf])
     return lim if np.isfinite(lim) and lim > 0 else np.inf
+
+
+def stick_limit(structure, contacts, phi) -> float:
+    """Largest modal amplitude up to which the linear stuck mode ``phi`` is an exact solution of the
+    contact law at every instant: no preloaded pair slips or opens, no gapped pair closes (``inf``
+    if none ever does). With the harmonic-1 contact amplitudes ``c = B₁φ`` per pair, ``d(t) = α
+    Re(c e^{iθ})``, a Jenkins direction j sticks while ``kt |d_j(t)| ≤ μ (N0 + kn d_n(t))`` for all
+    θ, i.e. ``α max_± |kt c_j ± μ kn c_n| ≤ μ N0`` (the normal force varies with the motion); the
+    normal force stays positive while ``α kn |c_n| < N0``; a gap stays open while ``α |c_n| < gap``.
+    A pair without friction (μ = 0) carries no tangential force in either state."""
+    c = (structure.harmonics[1].B @ phi).reshape(-1, 3)
+    kn, kt, mu, n0 = contacts.kn, contacts.kt, contacts.mu, contacts.N0
+    load = np.maximum(np.abs(kt[:, None] * c[:, 1:] - (mu * kn * c[:, 0])[:, None]),
+                      np.abs(kt[:, None] * c[:, 1:] + (mu * kn * c[:, 0])[:, None])).max(axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        slip = np.where((n0 > 0) & (mu > 0), mu * n0 / load, np.inf)
+        normal = np.where(n0 > 0, n0 / (kn * np.abs(c[:, 0])), contacts.gap / np.abs(c[:, 0]))
+    lim = float(np.min(np.r_[slip, normal, np.inf]))
+    return lim if lim > 0 else 0.0
+
+
+def _stuck_points(problem: EPMCProblem, phi, omega0: float, alpha) -> list:
+    """Solutions at the amplitudes ``alpha`` below the stick limit, without continuation.
+
+    While every pair sticks the EPMC is linear and homogeneous in ``y`` (contact forces ``K_c d``
+    about the static state, no gauged direction, the amplitude equation shifts by ``log`` of a
+    scale factor): the solution at ``α`` is ``y(α) = (α/α₁) y(α₁)`` at the same ω₀ and ξ = 0.
+    ``y(α₁)`` is the linear stuck mode (:func:`_initial_guess`) polished by Newton to 1e-12 (the
+    eigenvector of the stuck system and the condensed equations agree to ≈ 1e-9 only). Every
+    point is evaluated once for its outputs and checked as Newton checks convergence, tighter:
+    the correction ``δz = −J⁻¹ r`` satisfies ``max |δz| / scale ≤ 1e-10``. The Jacobian at ``α``
+    is that at ``α₁`` scaled, ``J(α) = S_r J(α₁) S_c`` (``S_r``: the amplitude row by ``α₁/α``;
+    ``S_c``: the ω and ξ columns by ``α/α₁``), so one factorisation serves all points. The list
+    stops at the first point that fails (the continuation then solves it)."""
+    if not alpha.size:
+        return []
+    a1 = alpha[0]
+    z_lin, _ = _initial_guess(problem.model, phi, omega0, a1)
+    first = newton(lambda z, jac: problem.fun(z, np.log(a1), jac), z_lin, problem.scale, 1e-12)
+    if not first.converged:
+        return []
+    out, fac = [], first.factorization
+    for a in alpha:
+        z = first.z.copy()
+        z[:-2] *= a / a1
+        r, _, _, _, ev = problem.fun(z, np.log(a), jacobian=False)
+        b = -r
+        b[-2] *= a / a1
+        dz = fac.solve(b)
+        dz[-2:] *= a1 / a
+        if not np.max(np.abs(dz) / problem.scale(z)) <= 1e-10:
+            break
+        problem.accept(z, ev)
+        out.append(ContinuationPoint(np.log(a), z, ev, 0))
+    return out
+
+
+def _joined(stuck: list, run, grid) -> NaturalResult:
+    """The stuck points on the first grid values and the continuation ``run`` on the others, as one
+    :class:`NaturalResult` on ``grid``."""
+    k = len(stuck)
+    out = NaturalResult(grid, list(stuck) + [None] * (grid.size - k), np.zeros(grid.size, int),
+                        [""] * grid.size, list(stuck))
+    if run is not None:
+        out.points[k:], out.status[k:], out.reason[k:] = run.points, run.status, run.reason
+        out.branch += run.branch
+    return out
 
 
 def _initial_guess(model: CondensedHBM, phi: np.ndarray, omega0: float, alpha0: float):

@@ -5,6 +5,7 @@ import pytest
 from ringdamper.fem.model import build_model
 from ringdamper.geometry.sector import build_sector
 from ringdamper.io import check_contract
+from ringdamper.nonlinear.epmc import epmc, linear_limit, stick_limit
 from ringdamper.nonlinear.stage import (
     contacts_from_static,
     failed_dnnm,
@@ -70,3 +71,46 @@ def test_failed_geometry_has_the_variables_of_a_solved_one_all_nan(chain):
     assert dict(ds.sizes) == dict(ok.sizes)
     assert all(np.all(np.isnan(ds[k].values)) for k in ds.data_vars if k != "status")
     assert np.all(ds.status.values == 99) and "static solve failed" in ds.attrs["reason"]
+
+
+def _stuck_mode_of(chain):
+    cfg, reduced, static, structure, contacts, target_hz = chain
+    omega = target_stuck_frequency(structure, contacts, target_hz)
+    omegas, phi = structure.stuck_modes(contacts.stuck_stiffness().ravel(), h=1)
+    return structure, contacts, omega, phi[:, int(np.argmin(np.abs(omegas - omega)))]
+
+
+def test_stuck_shortcut_equals_newton_on_the_stuck_points(chain):
+    """Below the stick limit the shortcut (polished stuck mode scaled by alpha, no continuation)
+    gives the Newton solution of every grid point: omega, xi, the contact slots and the modal
+    coordinates within 1e-10 relative (Newton run to 1e-13 without the shortcut; the continuation
+    tolerance is 1e-8)."""
+    structure, contacts, omega, phi = _stuck_mode_of(chain)
+    onset = stick_limit(structure, contacts, phi)
+    alpha = onset * np.geomspace(0.01, 0.9, 6)
+    fast = epmc(structure, contacts, alpha, H=1, omega_target=omega)
+    newton = epmc(structure, contacts, alpha, H=1, omega_target=omega, tol=1e-13, stuck_shortcut=False)
+    assert np.all(fast.status == 0) and np.all(newton.status == 0)
+    assert np.all(fast.iterations == 0) and np.all(newton.iterations[1:] > 0)   # the shortcut was taken
+    assert np.max(np.abs(fast.omega / newton.omega - 1)) <= 1e-10
+    assert np.max(np.abs(fast.xi - newton.xi) / newton.omega) <= 1e-10
+    # contact slots relative to their largest, modal coordinates of every harmonic relative to the
+    # amplitude (sum_r |eta_1,r|^2 = alpha^2)
+    scale_d = np.abs(newton.d).reshape(alpha.size, -1).max(axis=1)
+    assert np.max(np.abs(fast.d - newton.d).reshape(alpha.size, -1).max(axis=1) / scale_d) <= 1e-10
+    for a, b in zip(fast.eta, newton.eta):
+        assert np.max(np.abs(a - b).max(axis=1) / alpha) <= 1e-10
+
+
+def test_stick_limit_is_the_slip_onset(chain):
+    """The stick limit includes the normal-force variation: just below it (0.999) the AFT solution
+    is the linear stuck mode (zeta = 0, omega stuck), just above it (1.001) a pair slips
+    (zeta > 0). Nt = 512 samples resolve the onset to (1/cos(pi/512) - 1) = 2e-5."""
+    structure, contacts, omega, phi = _stuck_mode_of(chain)
+    onset = stick_limit(structure, contacts, phi)
+    assert onset < linear_limit(structure, contacts, phi)      # the preload falls during the period
+    bb = epmc(structure, contacts, onset * np.array([0.999, 1.001]), H=1, nt=512, omega_target=omega,
+              tol=1e-12, stuck_shortcut=False)
+    assert np.all(bb.status == 0)
+    assert abs(bb.zeta[0]) <= 1e-12 and bb.omega[0] == pytest.approx(omega, rel=1e-10)
+    assert bb.zeta[1] > 1e-9

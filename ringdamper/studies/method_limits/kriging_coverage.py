@@ -8,7 +8,8 @@ Coverage is the fraction with ``lower ≤ y ≤ upper``, the band of
 :meth:`~ringdamper.campaign.kriging.KrigingSurrogate.predict` (ŷ ± 2σ for the identity transform, its
 back-transform for the log; nominal 95.4 % for a calibrated Gaussian prediction), pooled over outputs,
 on the validation split, and on the held-out points near the boundary (``1 − max_k |κ_k| < boundary``)
-and inside. The campaign's ``min_training`` floor is lowered to the smallest size; an amplitude with
+and inside; the band is widened by the round-off 1e-12 max|y| the fit takes as 0, as in the validation.
+The campaign's ``min_training`` floor is lowered to the smallest size; an amplitude with
 fewer usable points than that is left out.
 """
 from __future__ import annotations
@@ -18,15 +19,15 @@ import xarray as xr
 
 from ringdamper.campaign.dataset import kappa as dataset_kappa
 from ringdamper.campaign.exploration import BACKBONE_OUTPUTS
-from ringdamper.campaign.kriging import BAND_PROBABILITY, KrigingSurrogate, fit_campaign
+from ringdamper.campaign.kriging import BAND_PROBABILITY, CONSTANT_RTOL, KrigingSurrogate, fit_campaign
 from ringdamper.io import variable
 
 GROUPS = ("validation", "held_out", "near_boundary", "interior")
 
 
-def covered(y: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> np.ndarray:
-    """``lower ≤ y ≤ upper`` per point."""
-    return (lower <= y) & (y <= upper)
+def covered(y: np.ndarray, lower: np.ndarray, upper: np.ndarray, atol: float = 0.0) -> np.ndarray:
+    """``lower − atol ≤ y ≤ upper + atol`` per point (``atol``: the round-off the fit takes as 0)."""
+    return (lower - atol <= y) & (y <= upper + atol)
 
 
 def coverage_study(dataset: xr.Dataset, usable: xr.DataArray, sizes, settings: dict | None = None,
@@ -64,7 +65,8 @@ def coverage_study(dataset: xr.Dataset, usable: xr.DataArray, sizes, settings: d
                 y = part[o].transpose("geometry", "amplitude").values
                 lower, upper = pred[f"{o}_lower"].values.T, pred[f"{o}_upper"].values.T
                 fitted = ok & np.isfinite(lower) & np.isfinite(upper)      # unfitted models left out
-                hits.append(np.where(fitted, covered(y, lower, upper), np.nan))
+                atol = CONSTANT_RTOL * float(np.nanmax(np.abs(fit[o].values)))
+                hits.append(np.where(fitted, covered(y, lower, upper, atol), np.nan))
             hits = np.stack(hits)                                  # output, geometry, amplitude
             for k, g in enumerate(GROUPS):
                 h = hits[:, where[g]]

@@ -44,32 +44,32 @@ def test_no_prediction_or_lower_band_is_negative_on_a_grid():
 
 def test_log_model_recovers_an_analytic_positive_function():
     """y = 10⁻³ exp(sin 2κ₁ + ½ cos 3κ₂ κ₃ + 0.3κ₃²) (a factor 18 over the box) from 100 LHS points:
-    the log model (the default c = 0.1 max y) has a median within 3 % of y (RMS of the relative error;
-    measured 2.0 %) on 1000 random points, closer than the identity model (measured 4.0 %), and its 95 %
-    band holds ≥ 95 % of them (measured 99.8 %)."""
+    the log model (the default c = max y) has a median within 3.5 % of y (RMS of the relative error;
+    measured 3.1 %; 2.0 % with c = 0.1 max y) on 1000 random points, closer than the identity model
+    (measured 4.0 %), and its 95 % band holds ≥ 95 % of them (measured 98.8 %)."""
     x, xt = lhs(100, 1), np.random.default_rng(5).uniform(-1.0, 1.0, (1000, 3))
     y, yt = 1e-3 * np.exp(smooth(x)), 1e-3 * np.exp(smooth(xt))
     t = Transform.for_data("log", y, K.DEFAULT_SETTINGS["log_offset"], y.max())
-    assert t.offset == 0.1 * y.max()
+    assert t.offset == y.max()
     model, _ = K.fit_model(x, t.forward(y), FAST)
     median, _, lower, upper = t.predictive(*model.predict(xt))
     rel = np.sqrt(np.mean(((median - yt) / yt) ** 2))
     plain, _ = K.fit_model(x, y, FAST)[0].predict(xt, with_std=False)
-    assert rel < 0.03
+    assert rel < 0.035
     assert rel < np.sqrt(np.mean(((plain - yt) / yt) ** 2))
     assert np.mean((lower <= yt) & (yt <= upper)) >= 0.95
 
 
 def test_latent_model_is_openturns_fit_of_the_log_and_quantiles_transform_exactly():
     """fit_campaign with the log transform: the latent mean and variance are OpenTURNS' fit of
-    z = ln(y + c), c = 0.1 max(y) (to 1e-8 of the spread of z and of σ²); the median and band are
+    z = ln(y + c), c = max(y) (to 1e-8 of the spread of z and of σ²); the median and band are
     T⁻¹(m), T⁻¹(m ∓ 2s) exactly, and the stored LOO residuals and Q² belong to y."""
     ds = campaign_dataset(60)
     kappa = np.column_stack([ds[f"kappa{k}"].values for k in (1, 2, 3)])
     y = ds["gamma"].values[:, 1]
     fit = K.fit_campaign(ds, outputs=("gamma",), settings=FAST)
     c = float(fit["gamma_offset"].values[1])
-    assert c == 0.1 * y.max() and fit["transform"].values[0, 1] == "log"
+    assert c == y.max() and fit["transform"].values[0, 1] == "log"
     surrogate = K.KrigingSurrogate(fit)
     points = np.random.default_rng(11).uniform(-1, 1, (200, 3))
     latent = surrogate.predict(points, latent=True)

@@ -34,7 +34,7 @@ DEFAULT_SETTINGS = {
     "nugget": 1.0e-12,           # fixed nugget factor ν ≥ 0, or [low, high] to estimate it by ML
     "min_training": 10,          # fewer usable points than this: the model is not fitted (status 2)
     "transform": {"q_res_z": "log", "omega0": "identity", "zeta": "log", "gamma": "log"},  # per output
-    "log_offset": 0.1,           # c of the log transform, × the model's largest training value
+    "log_offset": 1.0,           # c of the log transform, × the model's largest training value
 }
 
 

@@ -17,7 +17,8 @@ read back through T⁻¹.
   with s and would favour uncertain geometries in an optimum search; the median interpolates the
   training data like the Kriging mean). c → ∞ turns the transform into an affine map (the identity
   model, clipped at 0); c → 0 into a plain logarithm, which stretches the gap between a stuck ring
-  (y = 0) and a sliding one into a jump. The default c = 0.1 max(y) and the measurements behind it:
+  (y = 0) and a sliding one into a jump. The default c = max(y) is the mildest of the values measured
+  (z spans ln 2 over the data) and the closest to the identity's accuracy in cross-validation:
   docs/surrogate.md, *Positive outputs*.
 
 The spread reported beside a prediction is (upper − lower) / 4: s itself for the identity, and for

@@ -3,9 +3,11 @@ their values at given response levels, envelopes over the 50^3 grid and the opti
 
 Everything here goes through two functions:
 
-* :func:`backbones` -- the Kriging prediction (mean, standard deviation) of |q_res,z|, omega0, zeta,
-  gamma at every modal amplitude alpha of the campaign, for many geometries at once: the predicted
-  backbone of each geometry is the curve alpha -> (|q_res,z|, omega0, zeta, gamma);
+* :func:`backbones` -- the Kriging prediction (median, 95.45 % band and its spread, in output units:
+  :mod:`~ringdamper.campaign.kriging.surrogate`) of |q_res,z|, omega0, zeta, gamma at every modal
+  amplitude alpha of the campaign, for many geometries at once: the predicted backbone of each geometry
+  is the curve alpha -> (|q_res,z|, omega0, zeta, gamma) of the medians, which every envelope, optimum
+  and Sobol index here reads (non-negative where the output is modelled on a log scale);
 * :func:`at_levels` -- a backbone read at given values of one of its outputs (the response level
   |q_res,z| for the envelopes, the OAT maps and the Sobol indices; the forcing gamma for the
   resonant amplitude of the E-EBM at a forcing level).
@@ -35,11 +37,14 @@ BACKBONE_OUTPUTS = ("q_res_z", "omega0", "zeta", "gamma")
 
 @dataclass
 class Backbones:
-    """Predicted backbones: ``mean[name]`` and ``std[name]`` are (amplitude, point) arrays."""
+    """Predicted backbones: ``mean[name]`` (the median), ``std[name]`` (the band's spread, (upper -
+    lower) / 4), ``lower[name]`` and ``upper[name]`` (the 95.45 % band) are (amplitude, point) arrays."""
 
     amplitude: np.ndarray
     mean: dict
     std: dict | None
+    lower: dict | None = None
+    upper: dict | None = None
 
 
 def backbones(surrogate, X, outputs=BACKBONE_OUTPUTS, with_std: bool = True) -> Backbones:
@@ -47,8 +52,10 @@ def backbones(surrogate, X, outputs=BACKBONE_OUTPUTS, with_std: bool = True) -> 
     :class:`~ringdamper.campaign.kriging.KrigingSurrogate` (built once from kriging.nc)."""
     pred = surrogate.predict(np.atleast_2d(np.asarray(X, dtype=float)), outputs=list(outputs), with_std=with_std)
     mean = {name: pred[name].values for name in outputs}
-    std = {name: pred[f"{name}_std"].values for name in outputs} if with_std else None
-    return Backbones(amplitude=pred.amplitude.values, mean=mean, std=std)
+    if not with_std:
+        return Backbones(amplitude=pred.amplitude.values, mean=mean, std=None)
+    std, lower, upper = ({name: pred[f"{name}_{k}"].values for name in outputs} for k in ("std", "lower", "upper"))
+    return Backbones(amplitude=pred.amplitude.values, mean=mean, std=std, lower=lower, upper=upper)
 
 
 def monotone(x: np.ndarray) -> np.ndarray:
@@ -97,7 +104,7 @@ def one_at_a_time(i: int, n: int) -> np.ndarray:
 
 
 def predicted_zeta_max(bb: Backbones, q_max: float = np.inf) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`~ringdamper.campaign.summary.grid_zeta_max` of the Kriging-predicted mean backbones:
+    """:func:`~ringdamper.campaign.summary.grid_zeta_max` of the Kriging-predicted (median) backbones:
     the largest predicted ζ over the α nodes where the predicted |q_res,z| <= ``q_max``, and the
     amplitude index where it is reached ((point,) arrays). A prediction has no status, so every
     node counts, and the maximum of a piecewise-linear backbone lies on a node."""
@@ -170,12 +177,13 @@ def polish(objective, x0, h: float, box=((-1.0, 1.0),) * 3) -> tuple[np.ndarray,
 
 def summary(surrogate, kappa, forcing: float, q_max: float = np.inf) -> dict:
     """Predicted design figures of geometry ``kappa`` (flat, SI): zeta_max for |q_res,z| <= ``q_max``
-    (with its sigma) and the backbone point where it is reached (flagged if at the last amplitude: the
-    true maximum may lie beyond the grid), the linearised (smallest-amplitude) omega0 and the
-    resonant amplitude at ``forcing``."""
+    (median, with the spread and the 95.45 % band there) and the backbone point where it is reached
+    (flagged if at the last amplitude: the true maximum may lie beyond the grid), the linearised
+    (smallest-amplitude) omega0 and the resonant amplitude at ``forcing``."""
     bb = backbones(surrogate, np.asarray(kappa, float)[None])
     j = int(predicted_zeta_max(bb, q_max)[1][0])
     out = {"zeta_max": float(bb.mean["zeta"][j, 0]), "zeta_max_std": float(bb.std["zeta"][j, 0]),
+           "zeta_max_lower": float(bb.lower["zeta"][j, 0]), "zeta_max_upper": float(bb.upper["zeta"][j, 0]),
            "zeta_max_at_last_amplitude": j == bb.amplitude.size - 1,
            "amplitude_at_zeta_max": float(bb.amplitude[j])}
     for name in ("q_res_z", "omega0", "gamma"):
@@ -239,27 +247,29 @@ def response_axis(dataset, mask, n: int) -> np.ndarray:
 
 
 def sweeps(surrogate, n: int, levels) -> xr.Dataset:
-    """oat.nc: the predicted backbones (mean, std) of the one-at-a-time sweeps [kappa_i, others 0],
+    """oat.nc: the predicted backbones (median, spread, band) of the one-at-a-time sweeps [kappa_i, others 0],
     kappa_i on n values of [-1, 1], and omega0, zeta, gamma read at the |q_res,z| ``levels``."""
     data = {}
-    per = {f"{name}_{kind}": [] for name in BACKBONE_OUTPUTS for kind in ("mean", "std")}
+    kinds = {"mean": "Kriging median of", "std": "Kriging predictive spread ((upper - lower) / 4) of",
+             "lower": "lower bound of the 95.45 % Kriging band of",
+             "upper": "upper bound of the 95.45 % Kriging band of"}
+    per = {f"{name}_{kind}": [] for name in BACKBONE_OUTPUTS for kind in kinds}
     at = {name: [] for name in ENVELOPE_OUTPUTS}
     for i in range(3):
         bb = backbones(surrogate, one_at_a_time(i, n))
         for name in BACKBONE_OUTPUTS:
-            per[f"{name}_mean"].append(bb.mean[name].T)
-            per[f"{name}_std"].append(bb.std[name].T)
+            for kind in kinds:
+                per[f"{name}_{kind}"].append(getattr(bb, kind)[name].T)
         values = at_levels(bb.mean["q_res_z"], np.stack([bb.mean[k] for k in ENVELOPE_OUTPUTS]), levels)
         for k, name in enumerate(ENVELOPE_OUTPUTS):
             at[name].append(values[k].T)
     dims = ("parameter", "sample", "amplitude")
     for name in BACKBONE_OUTPUTS:
-        data[f"{name}_mean"] = variable(dims, per[f"{name}_mean"], surrogate.units[name], f"Kriging mean of {name}")
-        data[f"{name}_std"] = variable(dims, per[f"{name}_std"], surrogate.units[name],
-                                       f"Kriging standard deviation of {name}")
+        for kind, words in kinds.items():
+            data[f"{name}_{kind}"] = variable(dims, per[f"{name}_{kind}"], surrogate.units[name], f"{words} {name}")
     for name in ENVELOPE_OUTPUTS:
         data[f"{name}_at_level"] = variable(("parameter", "sample", "level"), at[name], surrogate.units[name],
-                                            f"Kriging mean of {name} at |q_res,z| (NaN: not reached)")
+                                            f"Kriging median of {name} at |q_res,z| (NaN: not reached)")
     coords = {"parameter": variable("parameter", np.array(["kappa1", "kappa2", "kappa3"], dtype=object), "1",
                                     "swept shape parameter (the other two are 0)"),
               "value": variable("sample", np.linspace(-1.0, 1.0, n), "1", "value of the swept parameter"),
@@ -309,7 +319,8 @@ def forcing_of(surrogate, kappa, level: float) -> float:
 def criterion(q_max: float) -> str:
     """The optimum's criterion in words (docs/analytics.md says why)."""
     return (f"maximum over the design space of zeta_max(kappa), the largest Kriging-predicted modal damping "
-            f"ratio along the geometry's backbone up to |q_res,z| = {q_max:g} m (exploration.optimum_max_level), "
+            f"ratio (median) along the geometry's backbone up to |q_res,z| = {q_max:g} m "
+            "(exploration.optimum_max_level), "
             "the paper's criterion (§3.3.2) on the response range of interest; best node of the grid, "
             "polished by bounded Nelder-Mead")
 

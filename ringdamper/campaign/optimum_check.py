@@ -17,8 +17,8 @@ OUTPUTS = ("q_res_z", "omega0", "zeta", "gamma")
 
 
 def predicted_backbone(kriging, kappa) -> dict:
-    """Kriging mean and standard deviation of every output on the amplitude grid at ``kappa``:
-    ``{name: array, name_std: array}``."""
+    """Kriging prediction (median), spread and 95.45 % band of every output on the amplitude grid at
+    ``kappa``: ``{name: array, name_std: array, name_lower: array, name_upper: array}``."""
     from .kriging import predict
 
     pred = predict(kriging, np.asarray(kappa, float)[None, :], outputs=OUTPUTS).isel(point=0)

@@ -1,5 +1,5 @@
 """Sobol indices of omega0, zeta, gamma read at response levels |q_res,z| (paper §3.3.3, §3.4.1; Figs.
-18, 20), on the Kriging mean.
+18, 20), on the Kriging prediction (the median of the log-scale models).
 
 The model of the study is :func:`~ringdamper.campaign.exploration.level_function`: kappa -> the
 predicted backbone of kappa read at each level. Its indices come from the pick-freeze estimators of

@@ -7,8 +7,13 @@ Per output, over every usable (geometry, amplitude) point of the validation spli
   model of the amplitude alone would capture; hence also
 * R^2 within amplitudes: the same with sum (y - mean_alpha y)^2 about each amplitude's mean, which
   measures what the surrogate adds: the effect of the geometry;
-* RMSE, maximum absolute error, and the coverage of the +-2 sigma predictive band (the fraction of
-  points with |y - y_hat| <= 2 sigma; 95.4 % for a calibrated Gaussian prediction);
+* RMSE, maximum absolute error, and the coverage of the 95.45 % predictive band (the fraction of
+  points with lower <= y <= upper; for the identity transform the band is y_hat +- 2 sigma, for the
+  log transform its back-transform, :mod:`~ringdamper.campaign.kriging.transform`), the band widened
+  by the round-off 1e-12 max|y| the fit takes as 0 (zeta = +-1e-17 at a stuck point whose model is
+  the constant 0 is covered);
+
+y_hat is the surrogate's point prediction, the median (the Kriging mean for the identity transform).
 * Q^2: the same two R^2 of the leave-one-out predictions on the training set.
 """
 from __future__ import annotations
@@ -19,7 +24,7 @@ import xarray as xr
 from ..io import variable
 from .dataset import kappa
 from .exploration import BACKBONE_OUTPUTS, backbones
-from .kriging import SIGMA_BAND
+from .kriging import BAND_PROBABILITY, CONSTANT_RTOL, SIGMA_BAND
 
 
 def r2(y, y_hat, centre=None) -> float:
@@ -29,16 +34,17 @@ def r2(y, y_hat, centre=None) -> float:
     return float(1.0 - np.sum((y - y_hat) ** 2) / np.sum((y - centre) ** 2))
 
 
-def metrics(y, y_hat, std, group) -> dict:
-    """Validation metrics of paired samples (1-D arrays) with predictive ``std``; ``group`` labels
-    the amplitude of each sample (for the within-amplitude R^2)."""
-    y, y_hat, std, group = map(np.asarray, (y, y_hat, std, group))
+def metrics(y, y_hat, lower, upper, group, atol: float = 0.0) -> dict:
+    """Validation metrics of paired samples (1-D arrays) with the predictive band [``lower``,
+    ``upper``], widened by the round-off ``atol``; ``group`` labels the amplitude of each sample (for
+    the within-amplitude R^2)."""
+    y, y_hat, lower, upper, group = map(np.asarray, (y, y_hat, lower, upper, group))
     means = {g: y[group == g].mean() for g in np.unique(group)}
     centre = np.array([means[g] for g in group])
     err = np.abs(y - y_hat)
     return {"r2": r2(y, y_hat), "r2_within": r2(y, y_hat, centre),
             "rmse": float(np.sqrt(np.mean(err ** 2))), "max_error": float(err.max()),
-            "coverage": float(np.mean(err <= SIGMA_BAND * std)), "n_points": int(y.size)}
+            "coverage": float(np.mean((lower - atol <= y) & (y <= upper + atol))), "n_points": int(y.size)}
 
 
 def _paired(dataset: xr.Dataset, mask: xr.DataArray, name: str, mean: np.ndarray):
@@ -62,8 +68,8 @@ def loo_pairs(fit: xr.Dataset, name: str):
 
 def validate(fit: xr.Dataset, surrogate, dataset: xr.Dataset, mask: xr.DataArray) -> xr.Dataset:
     """validation.nc: per output the metrics on the validation split and Q^2 (leave-one-out on the
-    training split, from kriging.nc ``fit``), with the validation predictions of ``surrogate`` (mean,
-    std) for the figures."""
+    training split, from kriging.nc ``fit``), with the validation predictions of ``surrogate`` (median,
+    spread, band) for the figures."""
     val = (dataset.split == "validation").values
     vset, vmask = dataset.isel(geometry=val), mask.isel(geometry=val)
     bb = backbones(surrogate, kappa(vset))
@@ -71,10 +77,11 @@ def validate(fit: xr.Dataset, surrogate, dataset: xr.Dataset, mask: xr.DataArray
                             "q2_within")}
     for name in BACKBONE_OUTPUTS:
         y, y_hat, group, _ = _paired(vset, vmask, name, bb.mean[name])
-        _, std, _, _ = _paired(vset, vmask, name, bb.std[name])
-        m = metrics(y, y_hat, std, group)
+        _, lower, _, _ = _paired(vset, vmask, name, bb.lower[name])
+        _, upper, _, _ = _paired(vset, vmask, name, bb.upper[name])
+        m = metrics(y, y_hat, lower, upper, group, CONSTANT_RTOL * float(np.nanmax(np.abs(fit[name].values))))
         ly, lhat, lgroup = loo_pairs(fit, name)
-        lm = metrics(ly, lhat, np.zeros_like(ly), lgroup)
+        lm = metrics(ly, lhat, lhat, lhat, lgroup)
         m["q2"], m["q2_within"] = lm["r2"], lm["r2_within"]
         for k in rows:
             rows[k].append(m[k])
@@ -91,7 +98,7 @@ def validate(fit: xr.Dataset, surrogate, dataset: xr.Dataset, mask: xr.DataArray
         "max_error": variable("output", rows["max_error"], "; ".join(units),
                               f"largest absolute validation error ({per_output})"),
         "coverage": variable("output", rows["coverage"], "1",
-                             f"fraction of validation points within +-{SIGMA_BAND:g} predictive sigma"),
+                             f"fraction of validation points within the {100 * BAND_PROBABILITY:g} % predictive band"),
         "n_points": variable("output", rows["n_points"], "1", "usable validation points"),
         "usable": variable(("geometry", "amplitude"), vmask.values.astype(np.int8), "1",
                            "1 where the computed point is usable"),
@@ -103,15 +110,18 @@ def validate(fit: xr.Dataset, surrogate, dataset: xr.Dataset, mask: xr.DataArray
         data[f"{name}_computed"] = variable(("geometry", "amplitude"), vset[name].values, u,
                                             f"{label}: dNNM + E-EBM")
         data[f"{name}_predicted"] = variable(("geometry", "amplitude"), bb.mean[name].T, u,
-                                             f"{label}: Kriging mean")
+                                             f"{label}: Kriging median")
         data[f"{name}_std"] = variable(("geometry", "amplitude"), bb.std[name].T, u,
-                                       f"{label}: Kriging predictive standard deviation")
+                                       f"{label}: Kriging predictive spread, (upper - lower) / 4")
+        for side in ("lower", "upper"):
+            data[f"{name}_{side}"] = variable(("geometry", "amplitude"), getattr(bb, side)[name].T, u,
+                                              f"{label}: {side} bound of the 95.45 % Kriging band")
     coords = {"output": variable("output", np.array(BACKBONE_OUTPUTS, dtype=object), "1", "surrogate output"),
               "geometry": variable("geometry", vset.geometry.values, "1", "validation geometry id"),
               "amplitude": variable("amplitude", dataset.amplitude.values, "kg0.5 m", "modal amplitude alpha")}
     for i in (1, 2, 3):
         coords[f"kappa{i}"] = variable("geometry", vset[f"kappa{i}"].values, "1", f"shape parameter kappa{i}")
-    return xr.Dataset(data, coords=coords, attrs={"sigma_band": SIGMA_BAND})
+    return xr.Dataset(data, coords=coords, attrs={"sigma_band": SIGMA_BAND, "band_probability": BAND_PROBABILITY})
 
 
 def named_gids(dataset: xr.Dataset, cases, tol: float = 1e-9) -> list:

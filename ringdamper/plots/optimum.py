@@ -97,14 +97,14 @@ def plot_optimum_dynamics(dnnms: dict, curves: dict, path) -> None:
 
 def plot_surrogate_at_optimum(predicted: dict, computed, path) -> None:
     """ω0, ζ and γ against |q_res,z| at the optimum: computed backbone (black; open markers where
-    the ring is held by the gauge) and the Kriging prediction with its ±2σ band (orange)."""
+    the ring is held by the gauge) and the Kriging prediction (median) with its 95 % band (orange)."""
     from .surrogate import COMPUTED, PREDICTED, draw_band, fit_to_lines
 
     fig, axes = plt.subplots(1, 3, figsize=(13, 4))
     draw_backbones(axes, {"computed": computed}, {"computed": COMPUTED})
     for ax, name in zip(axes, ("omega0", "zeta", "gamma")):
-        draw_band(ax, predicted["q_res_z"], predicted[name], predicted[f"{name}_std"], name,
-                  label="Kriging ±2σ" if name == "omega0" else None, **PREDICTED)
+        draw_band(ax, predicted["q_res_z"], predicted[name], predicted[f"{name}_lower"], predicted[f"{name}_upper"],
+                  name, label="Kriging, 95 % band" if name == "omega0" else None, **PREDICTED)
         if name != "gamma":
             fit_to_lines(ax)
     axes[0].legend(fontsize=7)

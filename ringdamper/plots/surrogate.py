@@ -12,12 +12,11 @@ PREDICTED = {"color": "tab:orange", "ls": "--", "lw": 1.4}
 COMPUTED = {"color": "k", "ls": "-", "lw": 1.4}
 
 
-def draw_band(ax, q, y, std, name, n_sigma=2.0, **style):
-    """Backbone y(q) (SI arrays) with its +-n_sigma band of y, in display units."""
+def draw_band(ax, q, y, lower, upper, name, **style):
+    """Backbone y(q) (SI arrays) with its predictive band [lower, upper] of y, in display units."""
     x, s = 1e3 * np.asarray(q), scale(name)
     line, = ax.plot(x, s * y, **style)
-    ax.fill_between(x, s * (y - n_sigma * std), s * (y + n_sigma * std), color=line.get_color(),
-                    alpha=0.15, lw=0)
+    ax.fill_between(x, s * np.asarray(lower), s * np.asarray(upper), color=line.get_color(), alpha=0.15, lw=0)
     return line
 
 
@@ -43,8 +42,8 @@ def _finish(fig, axes, path, xlabel=None):
 
 
 def plot_predicted_vs_computed(val, path) -> None:
-    """Fig. 13a-d: Kriging mean against the computed value at every usable validation point
-    (open markers: ring held by the gauge), with R2 and the +-2 sigma coverage."""
+    """Fig. 13a-d: Kriging median against the computed value at every usable validation point
+    (open markers: ring held by the gauge), with R2 and the coverage of the 95 % band."""
     names = [str(n) for n in val.output.values]
     fig, axes = plt.subplots(1, len(names), figsize=(4 * len(names), 4))
     usable = val.usable.values.astype(bool)
@@ -59,7 +58,7 @@ def plot_predicted_vs_computed(val, path) -> None:
         ax.plot(lims, lims, "k-", lw=0.8)
         m = val.sel(output=name)
         ax.set_title(f"({tag}) R2 = {float(m.r2):.4f}, within-alpha R2 = {float(m.r2_within):.3f}\n"
-                     f"Q2 = {float(m.q2):.4f}, +-2 sigma coverage {100 * float(m.coverage):.0f} %", fontsize=8)
+                     f"Q2 = {float(m.q2):.4f}, 95 % band coverage {100 * float(m.coverage):.0f} %", fontsize=8)
         ax.set_xlabel(f"computed {label(name)}")
         ax.set_ylabel(f"predicted {label(name)}")
     axes[0].legend(fontsize=7)
@@ -68,7 +67,7 @@ def plot_predicted_vs_computed(val, path) -> None:
 
 def plot_validation_cases(val, gids, path) -> None:
     """Fig. 13e-g: computed backbones (black; open markers where held by the gauge) against the
-    predicted ones (orange dashed, +-2 sigma band) of the validation geometries ``gids``."""
+    predicted ones (orange dashed, median and 95 % band) of the validation geometries ``gids``."""
     fig, axes = plt.subplots(len(gids), 3, figsize=(13, 3.3 * len(gids)), squeeze=False)
     for row, gid in zip(axes, gids):
         g = val.sel(geometry=gid)
@@ -79,8 +78,8 @@ def plot_validation_cases(val, gids, path) -> None:
             qc, yc = 1e3 * g.q_res_z_computed.values, scale(name) * g[f"{name}_computed"].values
             ax.plot(qc[ok], yc[ok], label="computed", **COMPUTED)
             ax.plot(qc[held], yc[held], "o", mfc="none", ms=4, color="k")
-            draw_band(ax, g.q_res_z_predicted.values, g[f"{name}_predicted"].values, g[f"{name}_std"].values,
-                      name, label="Kriging +-2 sigma", **PREDICTED)
+            draw_band(ax, g.q_res_z_predicted.values, g[f"{name}_predicted"].values, g[f"{name}_lower"].values,
+                      g[f"{name}_upper"].values, name, label="Kriging, 95 % band", **PREDICTED)
             fit_to_lines(ax)
             ax.set_ylabel(label(name))
             ax.set_title(f"{gid}: kappa = ({kappa})", fontsize=9)
@@ -89,8 +88,8 @@ def plot_validation_cases(val, gids, path) -> None:
 
 
 def plot_one_at_a_time(oat, i: int, path, n_curves: int = 9) -> None:
-    """Figs. 14-16: backbones of [kappa_i, others 0] for ``n_curves`` values of kappa_i with +-2
-    sigma bands (left; black dashed: default ring) and the output over (|q_res,z|, kappa_i) (right)."""
+    """Figs. 14-16: backbones of [kappa_i, others 0] for ``n_curves`` values of kappa_i with 95 %
+    bands (left; black dashed: default ring) and the output over (|q_res,z|, kappa_i) (right)."""
     sweep = oat.isel(parameter=i)
     values = sweep.value.values
     pick = np.unique(np.linspace(0, len(values) - 1, n_curves).round().astype(int))
@@ -101,7 +100,8 @@ def plot_one_at_a_time(oat, i: int, path, n_curves: int = 9) -> None:
     for (side, top), name in zip(axes, CURVES):
         for j in pick:
             draw_band(side, sweep.q_res_z_mean.values[j], sweep[f"{name}_mean"].values[j],
-                      sweep[f"{name}_std"].values[j], name, color=cmap((values[j] + 1) / 2), lw=1)
+                      sweep[f"{name}_lower"].values[j], sweep[f"{name}_upper"].values[j], name,
+                      color=cmap((values[j] + 1) / 2), lw=1)
         side.plot(1e3 * sweep.q_res_z_mean.values[default], scale(name) * sweep[f"{name}_mean"].values[default],
                   "k--", lw=1.2, label="default [0, 0, 0]")
         fit_to_lines(side)
@@ -113,7 +113,7 @@ def plot_one_at_a_time(oat, i: int, path, n_curves: int = 9) -> None:
     side_map = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(-1, 1))
     fig.colorbar(side_map, ax=axes[:, 0], label=f"kappa{i + 1}", shrink=0.6, location="left")
     axes[0, 0].legend(fontsize=7)
-    axes[0, 0].set_title(f"kappa{i + 1} in [-1, 1], others 0: backbones, +-2 sigma bands", fontsize=9)
+    axes[0, 0].set_title(f"kappa{i + 1} in [-1, 1], others 0: backbones (median), 95 % bands", fontsize=9)
     axes[0, 1].set_title("top view: output at |q_res,z| (white: level not reached)", fontsize=9)
     for ax in np.ravel(axes):
         ax.grid(alpha=0.3)

@@ -41,3 +41,11 @@ def test_min_training_above_the_training_set(config):
 def test_unknown_estimator(config):
     config["sensitivity"]["estimator"] = "sobol"
     assert "sensitivity.estimator = 'sobol' is not allowed" in _error(config)
+
+
+def test_bad_transform_and_log_offset_are_named(config):
+    config["surrogate"]["transform"] = {"zeta": "sqrt"}
+    assert "surrogate.transform.zeta = 'sqrt' is not allowed: choose one of ['identity', 'log']" in _error(config)
+    config["surrogate"]["transform"] = {"zeta": "log"}
+    config["surrogate"]["log_offset"] = 0.0
+    assert "surrogate.log_offset = 0.0 is out of range: allowed (0, +inf)" in _error(config)

@@ -131,6 +131,7 @@ def test_stored_dataset_prediction_equals_openturns(tmp_path, function, settings
     ds = campaign_dataset(60)
     kappa = np.column_stack([ds[f"kappa{k}"].values for k in (1, 2, 3)])
     ds["gamma"] = ds["gamma"] * 0 + function(kappa)[:, None]
+    settings = {**settings, "transform": {"gamma": "identity"}}  # OpenTURNS models y itself
     path = tmp_path / "kriging.nc"
     write_netcdf(K.fit_campaign(ds, outputs=("gamma",), settings=settings), path)
     stored = read_netcdf(path)

@@ -14,7 +14,7 @@ def test_metrics_against_hand_values():
     y = np.array([1.0, 2.0, 3.0, 4.0])
     y_hat = np.array([1.1, 1.9, 3.2, 3.8])
     std = np.array([0.1, 0.01, 0.2, 0.05])
-    m = metrics(y, y_hat, std, group=[0, 0, 1, 1])
+    m = metrics(y, y_hat, y_hat - 2 * std, y_hat + 2 * std, group=[0, 0, 1, 1])
     assert m["r2"] == pytest.approx(1 - 0.10 / 5, abs=1e-12)
     assert m["r2_within"] == pytest.approx(1 - 0.10 / 1, abs=1e-12)
     assert m["rmse"] == pytest.approx(np.sqrt(0.10 / 4), abs=1e-12)

@@ -1,4 +1,4 @@
-# Sobol indices of omega0, zeta, gamma at response levels, on the Kriging mean (paper §3.3.3, §3.4.1).
+# Sobol indices of omega0, zeta, gamma at response levels, on the Kriging prediction, the median (paper §3.3.3, §3.4.1).
 
 
 rule sobol:

@@ -6,6 +6,11 @@ eᵢ = yᵢ - ŷ₋ᵢ(xᵢ) and the variance factor ψ of :mod:`.gp`, and the p
 
     Q² = 1 - Σeᵢ² / Σ(yᵢ - ȳ)²     (eᵢ with fixed hyperparameters, Dubrule 1983).
 
+Each model is fitted to z = T(y), T the output's ``surrogate.transform`` (:mod:`.transform`). Data are
+constant (the constant model β = mean(z)) when their spread is below CONSTANT_RTOL times the output's
+largest |y| over the campaign (ζ = ±1e-17 of the stuck amplitudes is 0 beside ζ ~ 1e-3); β, σ, ψ
+belong to z, the stored training values, leave-one-out residuals and Q² to y (eᵢ = yᵢ - T⁻¹(zᵢ - e_z,ᵢ)).
+
 A model is Gaussian-process (status 0), constant (constant data, status 1) or not fitted (fewer than
 ``min_training`` usable geometries, status 2). The models are independent fits, each seeded by the
 settings alone, so the process pool that runs them side by side does not change them. Layout of
@@ -21,9 +26,10 @@ import numpy as np
 import xarray as xr
 
 from ...io import variable
-from .fit import fit_model
+from .fit import fit_model, is_constant_data
 from .gp import q2
 from .settings import check_settings
+from .transform import Transform
 
 log = logging.getLogger(__package__)  # one logger for the package: ringdamper.campaign.kriging
 
@@ -60,8 +66,14 @@ def _check_inputs(dataset: xr.Dataset, outputs) -> np.ndarray:
     return kappa
 
 
+def _physical_residuals(transform: Transform, y: np.ndarray, model) -> np.ndarray:
+    """Leave-one-out residuals of y: eᵢ = yᵢ - T⁻¹(zᵢ - e_z,ᵢ) (e_z,ᵢ those of the model of z)."""
+    e = model.loo_residuals()
+    return e if transform.kind == "identity" else y - transform.inverse(model.y - e)
+
+
 def _fit_task(task):
-    """:func:`fit_model` of one ``(x, y, settings, name)`` (a top-level function: process pools pickle it)."""
+    """:func:`fit_model` of one ``(x, y, settings, name, constant)`` (a top-level function: process pools pickle it)."""
     return fit_model(*task)
 
 
@@ -99,7 +111,10 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
     n_train = use.sum(axis=0)
     values = {out: dataset[out].transpose("geometry", "amplitude").values.astype(float) for out in outputs}
     tasks, keys = [], []
-    for out in outputs:
+    transforms = np.full((n_out, n_amp), Transform(), dtype=object)
+    scales = {out: float(np.max(np.abs(values[out]), where=use & np.isfinite(values[out]), initial=0.0))
+              for out in outputs}  # the output's magnitude over the campaign: round-off is relative to it
+    for io, out in enumerate(outputs):
         for ia in range(n_amp):
             rows = np.flatnonzero(use[:, ia])
             amp = float(dataset["amplitude"].values[ia])
@@ -107,12 +122,18 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
                 log.warning("%s at amplitude %.4g: %d usable geometries < surrogate.min_training = %d; not fitted",
                             out, amp, len(rows), s["min_training"])
                 continue
-            tasks.append((kappa[rows], values[out][rows, ia], s, f"{out} at amplitude[{ia}] = {amp:.6g}"))
+            name = f"{out} at amplitude[{ia}] = {amp:.6g}"
+            y = values[out][rows, ia]
+            finite = bool(np.all(np.isfinite(y)))  # fit_model names the non-finite values
+            kind = s["transform"].get(out, "identity") if finite else "identity"
+            transforms[io, ia] = Transform.for_data(kind, y, s["log_offset"], scales[out], name)
+            constant = finite and is_constant_data(y, scales[out])
+            tasks.append((kappa[rows], transforms[io, ia].forward(y), s, name, constant))
             keys.append((out, ia, rows))
     fitted = {(out, ia): (rows, *fit) for (out, ia, rows), fit in zip(keys, _fit_all(tasks, workers))}
     per_output = {}
     for io, out in enumerate(outputs):
-        beta, sigma, factor = np.full(n_amp, np.nan), np.full(n_amp, np.nan), np.full(n_amp, np.nan)
+        beta, sigma, factor, offset = (np.full(n_amp, np.nan) for _ in range(4))
         loo = np.full((n_amp, len(kappa)), np.nan)
         train = np.where(use, values[out], np.nan).T
         for ia in range(n_amp):
@@ -122,13 +143,19 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
             status[io, ia] = STATUS_CONSTANT if model.is_constant else STATUS_GP
             scale[io, ia], nugget[io, ia], loglik[io, ia] = model.scale, model.nugget, ll
             beta[ia], sigma[ia], factor[ia] = model.beta, model.sigma, model.loo_variance_factor()
-            loo[ia, rows] = model.loo_residuals()
-            q2s[io, ia] = q2(model.y, loo[ia, rows])
+            offset[ia] = transforms[io, ia].offset
+            loo[ia, rows] = _physical_residuals(transforms[io, ia], train[ia, rows], model)
+            q2s[io, ia] = q2(train[ia, rows], loo[ia, rows])
         units, long_name = dataset[out].attrs.get("units", "1"), dataset[out].attrs.get("long_name", out)
+        latent = Transform(s["transform"].get(out, "identity"))
+        z_units, z_name = latent.units(units), latent.describe(out, units)
         per_output[out] = variable(("amplitude", "geometry"), train, units,
                                    f"training values of {long_name} (NaN: not used)")
-        per_output[f"{out}_beta"] = variable("amplitude", beta, units, f"Kriging constant trend of {out}")
-        per_output[f"{out}_sigma"] = variable("amplitude", sigma, units, f"Kriging process standard deviation of {out}")
+        per_output[f"{out}_offset"] = variable("amplitude", offset, units,
+                                               f"offset c of the log transform of {out} (0: identity)")
+        per_output[f"{out}_beta"] = variable("amplitude", beta, z_units, f"Kriging constant trend of {z_name}")
+        per_output[f"{out}_sigma"] = variable("amplitude", sigma, z_units,
+                                              f"Kriging process standard deviation of {z_name}")
         per_output[f"{out}_variance_factor"] = variable(
             "amplitude", factor, "1", f"leave-one-out calibration factor of the predictive variance of {out}")
         per_output[f"{out}_loo_residual"] = variable(("amplitude", "geometry"), loo, units,
@@ -142,6 +169,8 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
                                   "1 where the geometry trains the models of that amplitude"),
         "kernel": variable(("output", "amplitude"), np.full((n_out, n_amp), s["kernel"], dtype=object), "1",
                            "correlation function of the model"),
+        "transform": variable(("output", "amplitude"), np.vectorize(lambda t: t.kind, otypes=[object])(transforms),
+                              "1", "output transform of the model (identity, log)"),
         "scale": variable(("output", "amplitude", "parameter"), scale, "1", "correlation length theta per parameter"),
         "nugget": variable(("output", "amplitude"), nugget, "1", "nugget factor (fraction of sigma^2)"),
         "status": variable(("output", "amplitude"), status, "1", "model status", flag_values=[0, 1, 2],
@@ -162,5 +191,6 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
 
     attrs = {"openturns_version": ot.__version__, "kernel": s["kernel"], "n_starts": s["n_starts"],
              "seed": s["seed"], "scale_bounds": list(s["scale_bounds"]), "scale_bounds_unit": "kappa-domain width (2)",
-             "nugget_setting": list(np.atleast_1d(s["nugget"])), "min_training": s["min_training"]}
+             "nugget_setting": list(np.atleast_1d(s["nugget"])), "min_training": s["min_training"],
+             "transform": ", ".join(f"{k}: {v}" for k, v in s["transform"].items()), "log_offset": s["log_offset"]}
     return xr.Dataset(data, coords=coords, attrs=attrs)

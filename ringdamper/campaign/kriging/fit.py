@@ -7,10 +7,17 @@ R = [ρ_θ(xᵢ - xⱼ)] + νI (kernels in :mod:`.gp`); θ maximises the concent
     ℓ(θ) = -½ (log det(σ̂² R) + N - 1) - N log √(2π)
 
 by Cobyla from ``n_starts`` starting points (a seeded log-uniform Latin hypercube over the bounds of
-:mod:`.settings`, OpenTURNS ``MultiStart``). ν is fixed or, given as [low, high], profiled: the fit is
-repeated at NUGGET_PROFILE log-spaced values and the one of largest ℓ kept.
+:mod:`.settings`, OpenTURNS ``MultiStart``), then polished by L-BFGS-B in log θ (numpy ℓ of
+:meth:`.gp.GPModel.log_likelihood`, equal to OpenTURNS'): OpenTURNS' solver works on θ mapped linearly
+onto [0, 1], where the short lengths a response with jumps asks for (θ ∈ [0.1, 0.3] is 2 % of the
+interval) are poorly resolved; it stopped on the lower bound θ₁ = 0.1 where ℓ rises by 1-5 at θ₁ ≈ 0.2
+(docs/surrogate.md, *Responses with jumps*). A polished θ is handed back to OpenTURNS (fixed parameters,
+amplitude σ̂) so that the fitted result, and the cross-check below, stay OpenTURNS'. ν is fixed or,
+given as [low, high], profiled: the fit is repeated at NUGGET_PROFILE log-spaced values and the one of
+largest ℓ kept.
 
-Data whose spread is below CONSTANT_RTOL × max|y| (round-off) give the constant model β = mean(y), σ = 0
+Data whose spread is below CONSTANT_RTOL × max|y| (round-off; or × the output's scale over the campaign,
+when the caller gives it) give the constant model β = mean(y), σ = 0
 without OpenTURNS. Every fitted model is checked twice: its amplitude against the closed-form σ̂ at
 OpenTURNS' optimum (AMPLITUDE_RTOL; σ̂ replaces it otherwise), and the numpy predictor of :mod:`.gp`
 against OpenTURNS' ``GaussianProcessRegression`` (MATCH_RTOL of the data spread; a larger gap is the sign
@@ -73,7 +80,36 @@ def _fit_ot_fixed_nugget(x: np.ndarray, y: np.ndarray, s: dict, nugget: float):
     solver.setCheckStatus(False)
     fitter.setOptimizationAlgorithm(ot.MultiStart(solver, _starting_points(lower, upper, s["n_starts"], s["seed"])))
     fitter.run()
-    return fitter.getResult()
+    result = fitter.getResult()
+    start = np.clip(np.array(result.getCovarianceModel().getScale()), lower, upper)
+    scale, sigma = _polish_scale(x, y, s["kernel"], nugget, start, lower, upper)
+    if scale is None:
+        return result
+    cov.setScale(scale)
+    cov.setAmplitude([sigma])
+    fixed = ot.GaussianProcessFitter(x, y[:, None], cov, ot.ConstantBasisFactory(dim).build())
+    fixed.setOptimizeParameters(False)
+    fixed.run()
+    return fixed.getResult()
+
+
+def _polish_scale(x, y, kernel: str, nugget: float, start, lower, upper):
+    """(θ, σ̂) maximising ℓ by L-BFGS-B in log θ from ``start`` within [lower, upper], or (None, None)
+    if ℓ does not rise above its value at ``start`` (by more than 1e-9 |ℓ|)."""
+    from scipy.optimize import minimize
+
+    def negative_ll(log_scale):
+        try:
+            return -GPModel(kernel, np.exp(log_scale), 1.0, nugget, 0.0, x, y).log_likelihood()
+        except np.linalg.LinAlgError:
+            return np.finfo(float).max
+
+    f0 = negative_ll(np.log(start))
+    res = minimize(negative_ll, np.log(start), method="L-BFGS-B", bounds=list(zip(np.log(lower), np.log(upper))))
+    if not res.fun < f0 - 1e-9 * abs(f0):
+        return None, None
+    scale = np.clip(np.exp(res.x), lower, upper)
+    return scale, GPModel(kernel, scale, 1.0, nugget, 0.0, x, y).ml_sigma()
 
 
 def fit_ot(x: np.ndarray, y: np.ndarray, settings: dict | None = None):
@@ -83,22 +119,31 @@ def fit_ot(x: np.ndarray, y: np.ndarray, settings: dict | None = None):
     log-spaced values and the one of largest likelihood kept (OpenTURNS' optimiser works on the
     parameters linearly scaled to [0, 1], where it cannot resolve a nugget spanning decades)."""
     s = check_settings(settings)
-    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    x, y = np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(y, dtype=float)  # layout-free sums
     nuggets = np.geomspace(*s["nugget"], NUGGET_PROFILE) if isinstance(s["nugget"], tuple) else [s["nugget"]]
     results = [_fit_ot_fixed_nugget(x, y, s, float(nu)) for nu in nuggets]
-    return max(results, key=lambda r: r.getOptimalLogLikelihood())
+    return max(results, key=lambda r: _model(r, s["kernel"], x, y).log_likelihood())
 
 
-def _is_constant(y: np.ndarray) -> bool:
-    return np.ptp(y) <= CONSTANT_RTOL * np.max(np.abs(y))
+def _model(result, kernel: str, x, y) -> GPModel:
+    cm = result.getCovarianceModel()
+    return GPModel(kernel, np.array(cm.getScale()), cm.getAmplitude()[0], cm.getNuggetFactor(),
+                   result.getTrendCoefficients()[0], x, y)
 
 
-def fit_model(x: np.ndarray, y: np.ndarray, settings: dict | None = None, name: str = "y"):
-    """Fit one model; returns (GPModel, reduced log-likelihood). Constant data (spread below
-    CONSTANT_RTOL × max|y|, e.g. ζ ≡ 0) give the constant model β = mean(y), σ = 0 without OpenTURNS.
-    Non-finite data raise ValueError naming ``name``."""
+def is_constant_data(y: np.ndarray, scale: float = 0.0) -> bool:
+    """Spread of ``y`` below CONSTANT_RTOL × max(max|y|, ``scale``): round-off about a constant."""
+    return np.ptp(y) <= CONSTANT_RTOL * max(np.max(np.abs(y)), scale)
+
+
+def fit_model(x: np.ndarray, y: np.ndarray, settings: dict | None = None, name: str = "y",
+              constant: bool | None = None):
+    """Fit one model; returns (GPModel, reduced log-likelihood). Constant data give the constant model
+    β = mean(y), σ = 0 without OpenTURNS: those the caller says are (``constant``; e.g. ζ = ±1e-17 when
+    the output reaches 1e-3 elsewhere) or, by default, those whose spread is below CONSTANT_RTOL × max|y|
+    (e.g. ζ ≡ 0). Non-finite data raise ValueError naming ``name``."""
     s = check_settings(settings)
-    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    x, y = np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(y, dtype=float)  # layout-free sums
     if x.ndim != 2 or y.shape != (len(x),):
         raise ValueError(f"{name}: inputs must be (n, d) and outputs (n,), got {x.shape} and {y.shape}")
     bad = ~np.isfinite(y) | ~np.all(np.isfinite(x), axis=1)
@@ -108,12 +153,10 @@ def fit_model(x: np.ndarray, y: np.ndarray, settings: dict | None = None, name: 
                          "filter failed geometries (mask) before fitting")
     if len(y) < 2:
         raise ValueError(f"{name}: {len(y)} training point(s); at least 2 are needed")
-    if _is_constant(y):
+    if is_constant_data(y) if constant is None else constant:
         return GPModel(s["kernel"], np.full(x.shape[1], np.nan), 0.0, 0.0, float(np.mean(y)), x, y), np.nan
     result = fit_ot(x, y, s)
-    cm = result.getCovarianceModel()
-    model = GPModel(s["kernel"], np.array(cm.getScale()), cm.getAmplitude()[0], cm.getNuggetFactor(),
-                    result.getTrendCoefficients()[0], x, y)
+    model = _model(result, s["kernel"], x, y)
     sigma = model.ml_sigma()
     if abs(sigma - model.sigma) > AMPLITUDE_RTOL * sigma:
         # OpenTURNS may return its starting amplitude (1) instead of the analytical estimate at the
@@ -123,7 +166,7 @@ def fit_model(x: np.ndarray, y: np.ndarray, settings: dict | None = None, name: 
                     name, model.sigma, sigma)
         model = GPModel(s["kernel"], model.scale, sigma, model.nugget, model.beta, x, y)
     _check_against_ot(model, result, name)
-    return model, float(result.getOptimalLogLikelihood())
+    return model, model.log_likelihood()
 
 
 def _check_against_ot(model: GPModel, fitter_result, name: str) -> None:

@@ -150,6 +150,15 @@ class GPModel:
         w = self.Rinv_y - beta * self.Rinv_1
         return float(np.sqrt(max((self.y - beta) @ w, 0.0) / (len(self.y) - 1)))
 
+    def log_likelihood(self) -> float:
+        """Reduced (concentrated) log-likelihood at the model's θ, ν: ℓ = -½ (N log σ̂² + log det R + N - 1)
+        - N log √(2π), σ̂ of :meth:`ml_sigma` (OpenTURNS' ``getOptimalLogLikelihood``; NaN if constant)."""
+        if self.is_constant:
+            return np.nan
+        n = len(self.y)
+        log_det = -2.0 * np.sum(np.log(np.diag(self.Linv)))  # det R = 1 / det(L⁻¹)²
+        return float(-0.5 * (n * np.log(self.ml_sigma() ** 2) + log_det + n - 1) - n * np.log(np.sqrt(2 * np.pi)))
+
     def loo_residuals(self) -> np.ndarray:
         """Analytic leave-one-out residuals eᵢ = yᵢ - ŷ₋ᵢ(xᵢ) (Dubrule 1983, formula in the module doc)."""
         if self.is_constant:

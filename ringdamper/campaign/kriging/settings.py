@@ -10,6 +10,12 @@ nugget (~1e-8) if used.
 
 The nugget factor ν is fixed (default 1e-12, OpenTURNS' own round-off floor) or, given as [low, high],
 estimated by maximum likelihood (profiled, see :mod:`.fit`).
+
+``transform`` names, per output, the scale the Gaussian process models (:mod:`.transform`): ``log``
+(z = ln(y + c), c = ``log_offset`` × the model's largest training value) for the outputs that physics
+keeps non-negative and that come close to 0 against their spread (ζ is 0 in the stuck regime; γ and
+|q_res,z| are positive), ``identity`` for ω0 (2.17-2.20, a spread of 1 % of its value: no model
+comes near 0). Outputs not named use ``identity``.
 """
 
 from __future__ import annotations
@@ -17,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from .gp import KERNELS
+from .transform import TRANSFORMS
 
 DOMAIN_WIDTH = 2.0  # κ ∈ [-1, 1]
 DEFAULT_SETTINGS = {
@@ -26,6 +33,8 @@ DEFAULT_SETTINGS = {
     "scale_bounds": (0.05, 5.0),  # θ bounds as multiples of the κ-domain width (2)
     "nugget": 1.0e-12,           # fixed nugget factor ν ≥ 0, or [low, high] to estimate it by ML
     "min_training": 10,          # fewer usable points than this: the model is not fitted (status 2)
+    "transform": {"q_res_z": "log", "omega0": "identity", "zeta": "log", "gamma": "log"},  # per output
+    "log_offset": 1.0,           # c of the log transform, × the model's largest training value
 }
 
 
@@ -50,4 +59,13 @@ def check_settings(settings: dict | None) -> dict:
     elif nugget.shape != (2,) or not (0.0 < nugget[0] < nugget[1] < 1.0):
         raise ValueError(f"surrogate.nugget = {s['nugget']!r}; "
                          "an estimated nugget needs [low, high], 0 < low < high < 1")
-    return {**s, "scale_bounds": tuple(lo_hi), "nugget": float(nugget) if nugget.shape == () else tuple(nugget)}
+    if not isinstance(s["transform"], dict):
+        raise ValueError(f"surrogate.transform = {s['transform']!r}; must map output names to one of {TRANSFORMS}")
+    transform = {**DEFAULT_SETTINGS["transform"], **s["transform"]}
+    for out, kind in transform.items():
+        if kind not in TRANSFORMS:
+            raise ValueError(f"surrogate.transform.{out} = {kind!r}; allowed {TRANSFORMS}")
+    if not isinstance(s["log_offset"], (int, float, np.floating)) or not 0.0 < s["log_offset"] < np.inf:
+        raise ValueError(f"surrogate.log_offset = {s['log_offset']!r}; must be a number > 0")
+    return {**s, "scale_bounds": tuple(lo_hi), "nugget": float(nugget) if nugget.shape == () else tuple(nugget),
+            "transform": transform, "log_offset": float(s["log_offset"])}

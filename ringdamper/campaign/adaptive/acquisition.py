@@ -14,8 +14,10 @@ mu = zeta(j*, x) and standard deviation s = s_zeta(j*, x):
 
     EI(x) = (mu - f*) Phi(z) + s phi(z),   z = (mu - f*) / s.
 
-Score: a(x) = U(x) / max U + w EI(x) / max EI (maxima over the candidate set; w =
-``sampling.adaptive.exploit_weight``), so both terms span [0, 1] whatever the outputs' units.
+Score: a(x) = U(x) / max U + w EI(x) / max(max EI, EI_FLOOR |f*|) (maxima over the candidate set;
+w = ``sampling.adaptive.exploit_weight``), so both terms span [0, 1] whatever the outputs' units; the
+floor keeps an expected gain below 0.1 % of the optimum (round-off where the optimum sits on a training
+ring) from being blown up to a full term.
 """
 from __future__ import annotations
 
@@ -25,6 +27,7 @@ from scipy.stats import norm
 from ..exploration import Backbones, predicted_zeta_max
 
 EXPLORED_OUTPUTS = ("zeta", "gamma", "q_res_z", "omega0")
+EI_FLOOR = 1.0e-3  # relative to the current optimum's zeta_max
 
 
 def uncertainty(bb: Backbones, spread: dict) -> np.ndarray:
@@ -52,8 +55,8 @@ def expected_improvement(mu: np.ndarray, s: np.ndarray, best: float) -> np.ndarr
     return np.where(s > 0, gain * norm.cdf(z) + s * norm.pdf(z), np.maximum(gain, 0.0))
 
 
-def _unit(v: np.ndarray) -> np.ndarray:
-    top = np.nanmax(v) if v.size else 0.0
+def _unit(v: np.ndarray, floor: float = 0.0) -> np.ndarray:
+    top = max(np.nanmax(v) if v.size else 0.0, floor)
     return v / top if top > 0 else np.zeros_like(v)
 
 
@@ -61,5 +64,5 @@ def acquisition(bb: Backbones, spread: dict, q_max: float, best: float, weight: 
     """Per candidate: ``explore`` U, ``exploit`` EI and the ``score`` a of the module docstring."""
     explore = uncertainty(bb, spread)
     exploit = expected_improvement(*zeta_max_distribution(bb, q_max), best)
-    score = _unit(explore) + weight * _unit(exploit)
+    score = _unit(explore) + weight * _unit(exploit, EI_FLOOR * abs(best))
     return {"explore": explore, "exploit": exploit, "score": np.nan_to_num(score, nan=-np.inf)}

@@ -26,7 +26,8 @@ plot_design(samples, sm.output.design)
 plot_trace(trace, sampling.get("adaptive", {}).get("loo_tolerance", float("nan")), sm.output.trace)
 design = sampling.get("design", "paper")
 row = design_row(design, samples, records, pd.read_csv(sm.input.metrics, index_col="output"),
-                 yaml.safe_load(open(sm.input.optimum)), pd.read_csv(sm.input.check), sm.input.benchmarks)
+                 yaml.safe_load(open(sm.input.optimum)), pd.read_csv(sm.input.check), pd.read_csv(sm.input.table3),
+                 sm.input.benchmarks)
 row.to_csv(sm.output.row, index=False, float_format="%.6g")
 table, notes = comparison_table(row, Path(sm.params.committed))
 if records and records[-1]["reason"] == "budget":

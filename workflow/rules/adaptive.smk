@@ -39,6 +39,7 @@ rule adaptive_report:
         metrics=f"{RESULTS}/surrogate/validation_metrics.csv",
         optimum=f"{RESULTS}/surrogate/optimum.yaml",
         check=f"{RESULTS}/surrogate/optimum_check.csv",
+        table3=f"{RESULTS}/frf/table3.csv",
         benchmarks=chain_benchmarks,
     output:
         design=report(f"{RESULTS}/figures/design_by_round.png", category="Design of experiments",

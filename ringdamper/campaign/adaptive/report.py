@@ -41,9 +41,10 @@ def job_times(benchmarks) -> tuple[float, float]:
 
 
 def design_row(design: str, samples: pd.DataFrame, records: list[dict], metrics: pd.DataFrame, optimum: dict,
-               check: pd.DataFrame, benchmarks) -> pd.DataFrame:
+               check: pd.DataFrame, table3: pd.DataFrame, benchmarks) -> pd.DataFrame:
     """The design's row of the comparison table (one-row DataFrame). ``metrics``: validation_metrics.csv
-    (index output); ``optimum``: optimum.yaml; ``check``: optimum_check.csv (row ``zeta_max``)."""
+    (index output); ``optimum``: optimum.yaml; ``check``: optimum_check.csv (row ``zeta_max``);
+    ``table3``: table3.csv (the forced-response reductions of the optimum against the default ring)."""
     cpu, wall = job_times(benchmarks)
     zeta = check.set_index("quantity").loc["zeta_max"]
     row = {"design": design, "n_training": int((samples.split == "training").sum()), "rounds": len(records),
@@ -53,6 +54,9 @@ def design_row(design: str, samples: pd.DataFrame, records: list[dict], metrics:
     for out in OUTPUTS:
         for m in METRICS:
             row[f"{out}_{m}"] = float(metrics.loc[out, m])
+    for level in table3.itertuples():
+        row[f"table3_reduction_eebm_pct_{level.level}"] = float(level.reduction_eebm_pct)
+        row[f"table3_reduction_frf_pct_{level.level}"] = float(level.reduction_frf_pct)
     return pd.DataFrame([row])
 
 

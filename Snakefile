@@ -17,6 +17,7 @@ RESULTS = config["results"]
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/sampling.smk"
+include: "workflow/rules/adaptive.smk"
 include: "workflow/rules/modal.smk"
 include: "workflow/rules/static.smk"
 include: "workflow/rules/reduction.smk"
@@ -33,8 +34,8 @@ include: "workflow/rules/report.smk"
 rule all:
     input:
         f"{RESULTS}/samples.csv",
-        expand(f"{RESULTS}/geometry/{{gid}}/mesh.vtu", gid=geometry_ids()),
-        expand(f"{RESULTS}/geometry/{{gid}}/dnnm.nc", gid=geometry_ids()),
+        campaign_files("mesh.vtu"),
+        campaign_files("dnnm.nc"),
         f"{RESULTS}/modal/resonance.yaml",
         f"{RESULTS}/figures/static_contact_maps.png",
         f"{RESULTS}/figures/backbones_reference_rings.png",
@@ -52,3 +53,4 @@ rule all:
         f"{RESULTS}/surrogate/optimum_check.csv",
         f"{RESULTS}/tables/paper_comparison.csv",
         f"{RESULTS}/tables/validation_metrics.html",
+        f"{RESULTS}/tables/design_comparison.html",

@@ -160,14 +160,34 @@ def _solver_errors(config: dict) -> list[str]:
     return errors
 
 
+def _design_errors(s: dict, min_training: int) -> list[str]:
+    """The design must give the Kriging fit its minimum training set: the paper design's training
+    geometries, or the adaptive design's initial ones (the first round fits on them alone); the
+    adaptive budget must cover the initial design."""
+    if s.get("design", "paper") == "paper":
+        n_training = len(s["factorial_levels"]) ** 3 + s["n_lhs_training"]
+        if min_training > n_training:
+            return [f"surrogate.min_training = {min_training} exceeds the {n_training} training geometries "
+                    "of sampling"]
+        return []
+    a = s.get("adaptive")
+    if a is None:
+        return ["sampling.adaptive: required when sampling.design = 'adaptive'"]
+    errors = []
+    if a["n_initial"] < min_training:
+        errors.append(f"sampling.adaptive.n_initial = {a['n_initial']} is below surrogate.min_training = "
+                      f"{min_training}, the fewest training geometries the Kriging fit takes: allowed "
+                      f"[{min_training}, +inf)")
+    if a["n_max"] < a["n_initial"]:
+        errors.append(f"sampling.adaptive.n_max = {a['n_max']} is below sampling.adaptive.n_initial = "
+                      f"{a['n_initial']}: allowed [{a['n_initial']}, +inf)")
+    return errors
+
+
 def _analytics_errors(config: dict) -> list[str]:
     """Cross-field rules of the surrogate, exploration and sensitivity sections."""
     errors = []
-    s = config["sampling"]
-    n_training = len(s["factorial_levels"]) ** 3 + s["n_lhs_training"]
-    if config["surrogate"]["min_training"] > n_training:
-        errors.append(f"surrogate.min_training = {config['surrogate']['min_training']} exceeds the "
-                      f"{n_training} training geometries of sampling")
+    errors += _design_errors(config["sampling"], config["surrogate"]["min_training"])
     for i, (lo, hi) in enumerate(config["sensitivity"]["local_box"]):
         if not lo < hi:
             errors.append(f"sensitivity.local_box[{i}] = {[lo, hi]} must have low < high (kappa{i + 1})")

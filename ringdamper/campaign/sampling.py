@@ -49,9 +49,9 @@ def maximin_lhs(n: int, existing: np.ndarray, rng: np.random.Generator, candidat
     return best
 
 
-def make_samples(sampling: dict) -> pd.DataFrame:
-    """Table ``gid, kappa1, kappa2, kappa3, split`` of the campaign: training, validation, and the
-    reference rings the design does not already hold (split ``reference``, gids r000...)."""
+def paper_design(sampling: dict) -> tuple[np.ndarray, np.ndarray]:
+    """(training, validation) kappa of the paper design: the factorial plus maximin LHS training
+    points, then the named and maximin LHS validation points, from one seeded stream."""
     rng = np.random.default_rng(sampling["seed"])
     levels = sampling["factorial_levels"]
     factorial = np.array(list(itertools.product(levels, repeat=N_KAPPA)), dtype=float)
@@ -62,6 +62,20 @@ def make_samples(sampling: dict) -> pd.DataFrame:
                           sampling["lhs_candidates"])
     validation = np.vstack([named, val_lhs])
     check_separation(training, validation, sampling["min_distance"])
+    return training, validation
+
+
+def make_samples(sampling: dict) -> pd.DataFrame:
+    """Table ``gid, kappa1, kappa2, kappa3, split`` of the campaign known before any job runs:
+    training, validation, and the reference rings the design does not already hold (split
+    ``reference``, gids r000...). ``sampling.design``: ``paper`` (the whole fixed design) or
+    ``adaptive`` (the initial design and the validation rings; the rounds add the rest,
+    :mod:`ringdamper.campaign.adaptive`)."""
+    if sampling.get("design", "paper") == "adaptive":
+        from .adaptive.design import adaptive_samples
+
+        return adaptive_samples(sampling)
+    training, validation = paper_design(sampling)
     rows = [(f"t{i:03d}", *k, "training") for i, k in enumerate(training)]
     rows += [(f"v{i:03d}", *k, "validation") for i, k in enumerate(validation)]
     design = np.vstack([training, validation])

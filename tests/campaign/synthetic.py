@@ -22,23 +22,29 @@ KAPPA_STAR = np.array([0.4, -0.3, 0.2])
 ALPHA_PEAK = 3e-5
 
 
-def backbone(kappa, alpha) -> dict:
-    """Analytic outputs (module docstring) of geometry ``kappa`` at amplitudes ``alpha``."""
+def quadratic_peak(k: np.ndarray) -> float:
+    """zeta_peak of the module docstring: largest at KAPPA_STAR."""
+    return 3e-3 * (1 - np.sum((k - KAPPA_STAR) ** 2) / 12)
+
+
+def backbone(kappa, alpha, zeta_peak=quadratic_peak) -> dict:
+    """Analytic outputs (module docstring) of geometry ``kappa`` at amplitudes ``alpha``, with the peak
+    damping ``zeta_peak(kappa)`` (default :func:`quadratic_peak`)."""
     k = np.asarray(kappa, float)
     la = np.log(alpha)
     q = 2.27 * (1 + 0.05 * k[0]) * alpha
-    zeta_peak = 3e-3 * (1 - np.sum((k - KAPPA_STAR) ** 2) / 12)
+    zeta_peak = zeta_peak(k)
     zeta = zeta_peak * np.exp(-0.5 * (la - np.log(ALPHA_PEAK)) ** 2)
     omega0 = 2.195 - 0.01 * (1 + 0.3 * k[0]) / (1 + np.exp(-(la - np.log(2e-5))))
     gamma = 2e4 * alpha * omega0 ** 2 * (zeta + 1e-4)
     return {"q_res_z": q, "zeta": zeta, "omega0": omega0, "gamma": gamma}
 
 
-def dnnm_dataset(kappa, alpha, status=None, n_pairs: int = 2) -> xr.Dataset:
+def dnnm_dataset(kappa, alpha, status=None, n_pairs: int = 2, zeta_peak=quadratic_peak) -> xr.Dataset:
     """The dnnm.nc of the analytic backbone, written through the dNNM stage's own declaration
     (``status`` per amplitude, default 0): the four analytic outputs, the frequency in Hz and a
     constant phase; the per-pair energies and diagnostics, which the analytics do not read, are 0."""
-    b = backbone(kappa, alpha)
+    b = backbone(kappa, alpha, zeta_peak)
     status = np.zeros(alpha.size, np.int8) if status is None else np.asarray(status, np.int8)
     size = {"amplitude": alpha.size, "pair": n_pairs}
     values = {k: np.zeros([size[d] for d in np.atleast_1d(dims)])

@@ -34,6 +34,7 @@ def test_too_few_pce_samples_for_the_degree(config):
 
 
 def test_min_training_above_the_training_set(config):
+    config["sampling"]["design"] = "paper"
     config["surrogate"]["min_training"] = 101
     assert "surrogate.min_training = 101 exceeds the 100 training geometries" in _error(config)
 

@@ -1,4 +1,5 @@
-"""Design of experiments: 27 factorial + maximin LHS training, named + LHS validation, seeded."""
+"""Design of experiments of the paper design: 27 factorial + maximin LHS training, named + LHS validation,
+seeded (the adaptive design: test_adaptive.py)."""
 import itertools
 
 import numpy as np
@@ -10,7 +11,7 @@ from ringdamper.campaign.sampling import make_samples, read_samples
 
 
 def test_campaign_samples(campaign_config):
-    s = campaign_config["sampling"]
+    s = {**campaign_config["sampling"], "design": "paper"}
     table = make_samples(s)
     train = table[table.split == "training"]
     val = table[table.split == "validation"]
@@ -43,7 +44,7 @@ def test_sampling_is_reproducible_and_seeded(campaign_config):
 
 
 def test_reference_rings_are_added_when_the_design_lacks_them(small_config):
-    table = make_samples(small_config["sampling"])  # factorial levels -1, +1 only
+    table = make_samples({**small_config["sampling"], "design": "paper"})  # factorial levels -1, +1 only
     refs = table[table.split == "reference"]
     assert len(refs) == 7  # all but the paper optimum (1, -1, -1), a corner of the factorial
     assert refs.gid.str.startswith("r").all()

@@ -2,7 +2,8 @@
 configuration sections as ``params.config`` (workflow/rules/common.smk), and Snakemake's params
 trigger compares them with those recorded when the outputs were made: a dry run on the finished small
 campaign, with one value edited, lists the jobs of the stage that reads it and everything downstream,
-and nothing upstream or beside it."""
+and nothing upstream or beside it. The adaptive design (its rounds, samples.csv) is downstream of every
+dNNM: the rounds choose the rings from them."""
 import copy
 
 import pytest
@@ -36,7 +37,7 @@ def _scale(section, key, factor):
 @pytest.mark.slow
 def test_a_friction_edit_reruns_static_and_dnnm_and_everything_downstream(small_campaign, every_job, tmp_path):
     jobs = dry_run_jobs(small_campaign, _edited(tmp_path, _scale("contact", "friction_coefficient", 1.5)))
-    upstream_or_beside = {"samples", "reduced"}
+    upstream_or_beside = {"reduced"}   # samples.csv is downstream: the adaptive rounds read the dNNMs
     assert {rule: n for rule, n in jobs.items() if rule != "reduced"} == {
         rule: n for rule, n in every_job.items() if rule not in upstream_or_beside}
     assert jobs["static"] == jobs["dnnm"] == every_job["dnnm"]       # every geometry's static and dNNM
@@ -47,7 +48,8 @@ def test_a_friction_edit_reruns_static_and_dnnm_and_everything_downstream(small_
 def test_a_dnnm_edit_leaves_the_static_reduction_and_modal_stages(small_campaign, every_job, tmp_path):
     jobs = dry_run_jobs(small_campaign, _edited(tmp_path, _scale("dnnm", "n_time_samples", 2)))
     assert {"stuck_default", "dnnm", "aggregate", "kriging", "frf_curve"} <= set(jobs)
-    assert not set(jobs) & {"samples", "modal", "static_maps"}
+    assert not set(jobs) & {"modal", "static_maps"}
+    assert {"adaptive_round", "samples"} <= set(jobs)      # the adaptive design is chosen from the dNNMs
     assert jobs["static"] == jobs["reduced"] == 1   # the optimum's only, downstream of the surrogates
     assert jobs["dnnm"] == every_job["dnnm"]
 

@@ -1,9 +1,12 @@
 """A geometry whose chain fails loses nothing else. A test-side fault (``tests/faults``) makes one
-training geometry's static solve raise after meshing; the campaign still ends (return code
-0), the geometry's static.nc and dnnm.nc have a solved file's variables, all NaN, with status 99 and
-the reason, the dataset keeps it flagged, and the Kriging fits exclude it with a warning naming it."""
+training geometry's static solve raise after meshing; the campaign still ends (return code 0), every
+adaptive round excludes the geometry and the loop goes on, the geometry's static.nc and dnnm.nc have a
+solved file's variables, all NaN, with status 99 and the reason, the dataset keeps it flagged, and the
+Kriging fits exclude it with a warning naming it."""
 import numpy as np
+import pandas as pd
 import pytest
+import yaml
 
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.io import read_netcdf
@@ -40,5 +43,11 @@ def test_an_injected_static_failure_is_flagged_and_excluded_and_the_campaign_end
     warning = f"WARNING ringdamper.campaign.dataset: geometry {failed} (training) excluded"
     assert warning in (out / "logs" / "kriging.log").read_text()
     kriging = read_netcdf(out / "surrogate" / "kriging.nc")
-    n_training = int((table.split == "training").sum())
+    samples = pd.read_csv(out / "samples.csv")
+    n_training = int((samples.split == "training").sum())
     assert int(kriging["n_training"].max()) == n_training - 1
+    rounds = sorted((out / "adaptive").glob("round_*.yaml"))                # the adaptive loop went on
+    assert len(rounds) >= 2
+    for path in rounds:
+        record = yaml.safe_load(path.read_text())
+        assert record["excluded"] == [failed] and record["n_usable"] == record["n_computed"] - 1, path

@@ -100,3 +100,37 @@ def test_report_holds_every_figure_and_table(campaign):
     assert comparison["paper source"].str.contains("§").all()
     n_levels = min(len(pd.read_csv(campaign / "frf" / "table3.csv")), 4)     # the paper has four
     assert comparison.quantity.str.startswith("Table 3").sum() == 4 * n_levels
+
+
+@pytest.mark.slow
+def test_the_campaign_ran_adaptively_in_rounds_to_its_budget(campaign, small_config):
+    """The small configuration's adaptive design: rounds of 2 rings from the 10 initial ones, stopped by
+    the budget of 14 (not an error: the report says so), the design figure and comparison table in the
+    report, the validation rings untouched."""
+    from ringdamper.campaign.sampling import make_samples
+
+    adaptive = small_config["sampling"]["adaptive"]
+    records = [yaml.safe_load(p.read_text()) for p in sorted((campaign / "adaptive").glob("round_*.yaml"))]
+    assert len(records) >= 3 and [r["round"] for r in records] == list(range(1, len(records) + 1))
+    assert all(len(r["chosen"]) == adaptive["batch"] and not r["stop"] for r in records[:-1])
+    assert records[-1]["stop"] and records[-1]["reason"] == "budget" and records[-1]["n_computed"] == adaptive["n_max"]
+    samples = pd.read_csv(campaign / "samples.csv")
+    initial = make_samples(small_config["sampling"])
+    head = samples.iloc[:len(initial)]
+    assert head.gid.tolist() == initial.gid.tolist() and head.split.tolist() == initial.split.tolist()
+    kappa = ["kappa1", "kappa2", "kappa3"]
+    assert np.allclose(head[kappa], initial[kappa], rtol=1e-9, atol=1e-10)     # written with 10 digits
+    chosen = [c["gid"] for r in records for c in r["chosen"]]
+    assert samples.gid.iloc[len(initial):].tolist() == chosen
+    assert (samples.split == "training").sum() == adaptive["n_max"]
+    for gid in chosen:
+        assert read_netcdf(campaign / "geometry" / gid / "dnnm.nc", "dnnm").status.values[0] == 0
+    kriging = read_netcdf(campaign / "surrogate" / "kriging.nc")
+    assert int(kriging["n_training"].max()) == adaptive["n_max"]
+    row = pd.read_csv(campaign / "tables" / "design_row.csv").iloc[0]
+    assert row.design == "adaptive" and row.n_training == adaptive["n_max"] and row.stop == "budget"
+    assert row.job_cpu_s > 0 and 0 < row.zeta_max_computed
+    html = (campaign / "report.html").read_text()
+    for name in ("design_by_round.png", "stopping_trace.png", "design_comparison.html", "adaptive_rounds.html"):
+        assert name in html, name
+    assert "budget sampling.adaptive.n_max = 14 ran out" in (campaign / "tables" / "design_comparison.html").read_text()

@@ -1,13 +1,17 @@
 # Shared by the rule files (what one rule file alone uses lives in that file). The design of
-# experiments is seeded and deterministic, so it is computed at parse time: the DAG is static and a dry
-# run lists every job (the `samples` rule writes the same table).
+# experiments known before any job runs is seeded and deterministic, so it is computed at parse time:
+# the paper design whole, the adaptive design's initial rings and the validation rings. The rings the
+# adaptive rounds add are known only once each round's checkpoint has written its record
+# (adaptive.smk); the functions below resolve them through the checkpoints.
 import json
 
 import yaml
 
+from ringdamper.campaign.adaptive.design import round_of
 from ringdamper.campaign.sampling import REFERENCE_RINGS, make_samples
 
 SAMPLES = make_samples(config["sampling"]).set_index("gid")
+ADAPTIVE = config["sampling"].get("design", "paper") == "adaptive"
 
 
 # The configuration sections each stage's outputs depend on: the stage's own, and through its input
@@ -54,7 +58,68 @@ def benchmark_file(name):
 
 
 def geometry_ids():
+    """The geometries known at parse time (the whole design of ``paper``)."""
     return list(SAMPLES.index)
+
+
+def round_record(round_):
+    """The record of adaptive round ``round_`` (checkpoint adaptive_round): chosen rings, stop decision."""
+    return f"{RESULTS}/adaptive/round_{round_}.yaml"
+
+
+def read_round(round_):
+    """The record of round ``round_``; raises until its checkpoint has run (Snakemake then runs it)."""
+    with open(checkpoints.adaptive_round.get(round=str(round_)).output[0]) as fh:
+        return yaml.safe_load(fh)
+
+
+def rounds_before(round_):
+    """The records of rounds 1 .. round_ - 1."""
+    return [read_round(k) for k in range(1, round_)]
+
+
+def finished_rounds():
+    """The records of every round up to the one that stopped (none for the paper design)."""
+    records = []
+    while ADAPTIVE and not (records and records[-1]["stop"]):
+        records.append(read_round(len(records) + 1))
+    return records
+
+
+def chosen_gids(records):
+    return [c["gid"] for record in records for c in record["chosen"]]
+
+
+def training_gids_before(round_):
+    """The training rings round ``round_`` fits on: the initial design's and those earlier rounds chose."""
+    return list(SAMPLES.index[SAMPLES.split == "training"]) + chosen_gids(rounds_before(round_))
+
+
+def round_training(wildcards):
+    """The training rings of the round of ``wildcards.round``."""
+    return training_gids_before(int(wildcards.round))
+
+
+def campaign_gids():
+    """Every geometry of the campaign: the parse-time table and the rings of every round."""
+    return geometry_ids() + chosen_gids(finished_rounds())
+
+
+def campaign_files(name):
+    """Input function: results/geometry/<gid>/``name`` of every geometry of the campaign."""
+    return lambda wildcards: [f"{RESULTS}/geometry/{gid}/{name}" for gid in campaign_gids()]
+
+
+# The design-comparison table of the report (adaptive_report): the other design's row is read from
+# docs/adaptive/ when committed.
+DESIGN_ROW = "docs/adaptive/{design}_design_row.csv"
+OTHER_DESIGN = {"adaptive": "paper", "paper": "adaptive"}[config["sampling"].get("design", "paper")]
+
+
+def chain_benchmarks(wildcards):
+    """The benchmark files of every job the design's training and validation rings and rounds cost."""
+    files = [benchmark_file(f"{stage}/{gid}") for gid in campaign_gids() for stage in ("static", "reduced", "dnnm")]
+    return files + [benchmark_file(f"adaptive/round_{r['round']}") for r in finished_rounds()]
 
 
 # Resources for a cluster (threads, mem_mb, runtime in minutes), declared in each rule from the
@@ -78,15 +143,24 @@ def optimum_yaml():
 
 
 def kappa_source(wildcards):
-    """Input fixing kappa: none for a sampled geometry, optimum.yaml for gid ``optimum``."""
-    return [optimum_yaml()] if wildcards.gid == OPTIMUM_GID else []
+    """Input fixing kappa: none for a sampled geometry, optimum.yaml for gid ``optimum``, the round's
+    record for a ring an adaptive round chose."""
+    if wildcards.gid == OPTIMUM_GID:
+        return [optimum_yaml()]
+    round_ = round_of(wildcards.gid)
+    return [checkpoints.adaptive_round.get(round=str(round_)).output[0]] if round_ else []
 
 
 def kappa_of(wildcards):
-    """kappa of geometry ``gid`` (the sample table, or optimum.yaml for gid ``optimum``)."""
+    """kappa of geometry ``gid`` (the sample table, optimum.yaml for gid ``optimum``, or the record of
+    the round that chose it)."""
     if wildcards.gid == OPTIMUM_GID:
         with open(optimum_yaml()) as fh:
             return [float(k) for k in yaml.safe_load(fh)["kappa"]]
+    round_ = round_of(wildcards.gid)
+    if round_:
+        chosen = {c["gid"]: c["kappa"] for c in read_round(round_)["chosen"]}
+        return [float(k) for k in chosen[wildcards.gid]]
     row = SAMPLES.loc[wildcards.gid]
     return [float(row.kappa1), float(row.kappa2), float(row.kappa3)]
 

@@ -1,4 +1,6 @@
 rule samples:
+    input:
+        rounds=lambda wildcards: [round_record(r["round"]) for r in finished_rounds()],
     output:
         f"{RESULTS}/samples.csv",
     params:

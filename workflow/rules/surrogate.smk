@@ -6,12 +6,12 @@
 rule aggregate:
     input:
         samples=f"{RESULTS}/samples.csv",
-        dnnm=expand(f"{RESULTS}/geometry/{{gid}}/dnnm.nc", gid=geometry_ids()),
+        dnnm=campaign_files("dnnm.nc"),
     output:
         f"{RESULTS}/campaign/dataset.nc",
     params:
         config=sections(*DATASET),
-        gids=geometry_ids(),
+        gids=lambda wildcards: campaign_gids(),
     threads: 1
     resources:
         mem_mb=scaled(400),

@@ -1,0 +1,70 @@
+"""The adaptive design in the report: the trace of the rounds (leave-one-out errors, predicted optimum,
+stop decision) and the row of the design-comparison table (training size, job time, validation
+metrics, optimum), beside the ``paper`` design's row when a committed one exists.
+
+The row is the same for either design, so a run of ``sampling.design: paper`` writes the paper row with
+the same code (docs/adaptive.md says how the committed one was made).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..kriging import OUTPUTS
+
+METRICS = ("r2", "rmse", "coverage")  # per output, from validation_metrics.csv
+
+
+def trace_table(records: list[dict]) -> pd.DataFrame:
+    """One row per round: rings computed, usable, excluded; each output's normalised LOO error; the
+    predicted optimum (kappa, zeta_max and its std) and its changes; the stop decision; rings chosen."""
+    rows = []
+    for r in records:
+        change = r["optimum_changes"][-1] if r["optimum_changes"] else {"kappa": np.nan, "zeta_max": np.nan}
+        rows.append({"round": r["round"], "n_computed": r["n_computed"], "n_usable": r["n_usable"],
+                     "excluded": " ".join(r["excluded"]),
+                     **{f"loo_{o}": r["loo"][o] for o in OUTPUTS},
+                     **{f"optimum_kappa{i + 1}": k for i, k in enumerate(r["optimum"]["kappa"])},
+                     "optimum_zeta_max": r["optimum"]["zeta_max"],
+                     "optimum_zeta_max_std": r["optimum"]["zeta_max_std"],
+                     "change_kappa": change["kappa"], "change_zeta_max": change["zeta_max"],
+                     "stop": r["stop"], "reason": r["reason"] or "", "n_chosen": len(r["chosen"])})
+    return pd.DataFrame(rows)
+
+
+def job_times(benchmarks) -> tuple[float, float]:
+    """(CPU, wall) seconds summed over Snakemake benchmark files (columns cpu_time, s)."""
+    tables = [pd.read_csv(path, sep="\t") for path in benchmarks]
+    return (float(sum(t["cpu_time"].sum() for t in tables)), float(sum(t["s"].sum() for t in tables)))
+
+
+def design_row(design: str, samples: pd.DataFrame, records: list[dict], metrics: pd.DataFrame, optimum: dict,
+               check: pd.DataFrame, table3: pd.DataFrame, benchmarks) -> pd.DataFrame:
+    """The design's row of the comparison table (one-row DataFrame). ``metrics``: validation_metrics.csv
+    (index output); ``optimum``: optimum.yaml; ``check``: optimum_check.csv (row ``zeta_max``);
+    ``table3``: table3.csv (the forced-response reductions of the optimum against the default ring)."""
+    cpu, wall = job_times(benchmarks)
+    zeta = check.set_index("quantity").loc["zeta_max"]
+    row = {"design": design, "n_training": int((samples.split == "training").sum()), "rounds": len(records),
+           "stop": records[-1]["reason"] if records else "", "job_cpu_s": cpu, "job_wall_s": wall,
+           **{f"optimum_kappa{i + 1}": k for i, k in enumerate(optimum["kappa"])},
+           "zeta_max_predicted": float(zeta["predicted"]), "zeta_max_computed": float(zeta["computed"])}
+    for out in OUTPUTS:
+        for m in METRICS:
+            row[f"{out}_{m}"] = float(metrics.loc[out, m])
+    for level in table3.itertuples():
+        row[f"table3_reduction_eebm_pct_{level.level}"] = float(level.reduction_eebm_pct)
+        row[f"table3_reduction_frf_pct_{level.level}"] = float(level.reduction_frf_pct)
+    return pd.DataFrame([row])
+
+
+def comparison_table(row: pd.DataFrame, committed: Path) -> tuple[pd.DataFrame, list[str]]:
+    """``row`` beside the committed row of the other design (``committed``, a design-row CSV) if it
+    exists; the notes say which."""
+    if committed.exists():
+        other = pd.read_csv(committed)
+        other = other[other.design != row.design.iloc[0]]
+        return pd.concat([row, other], ignore_index=True), [f"Other design's row: {committed} (committed)."]
+    return row, [f"No committed row of the other design ({committed} absent)."]

@@ -144,8 +144,11 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     they are undetermined at the first point (default 0). ``stuck_shortcut``: the grid points
     below the stick limit of the linear stuck mode (:func:`stick_limit`) are that mode scaled by α,
     without Newton (:func:`_stuck_points`). ``alpha_start``: where the continuation of the other
-    grid points starts from the linear stuck mode (default: just below the stick limit if that is
-    below the first of those points; half :func:`linear_limit` where the stick limit is zero).
+    grid points starts from the linear stuck mode (default: half the stick limit, or half
+    :func:`linear_limit` where the stick limit is zero, if below the first of those points; started
+    just below the stick limit, the first step crosses the stick-slip corner along the linear
+    branch's tangent, and on the cyclic test system of ``tests/nonlinear/test_cyclic.py`` the
+    continuation then ran out of points at 0.99 of the limit and converged at 0.9 or below).
     ``drift_tol``: relative size of the dropped rigid-body equilibrium above which a converged
     point gets status DRIFT.
     """
@@ -170,8 +173,7 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     run = None
     if rest.size:
         if alpha_start is None:
-            below = (1 - 1e-6) * onset if onset > 0 else 0.5 * linear_limit(structure, contacts, phi)
-            alpha_start = min(rest[0], below)
+            alpha_start = min(rest[0], 0.5 * (onset if onset > 0 else linear_limit(structure, contacts, phi)))
         z0, _ = _initial_guess(model, phi, omega0, alpha_start)
         run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log(rest), problem.scale,
                                      steps, tol, max_iter, accept=problem.accept,

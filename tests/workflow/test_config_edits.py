@@ -59,7 +59,8 @@ def test_a_forced_response_edit_reruns_only_the_forced_responses_and_what_reads_
     def widen(config):
         config["frf"]["frequency_band"] = [0.98, 1.02]
     jobs = dry_run_jobs(small_campaign, _edited(tmp_path, widen))
-    assert set(jobs) == {"frf_levels", "frf_curve", "table3", "optimum_figures", "paper_comparison", "all"}
+    assert set(jobs) == {"frf_levels", "frf_curve", "table3", "optimum_figures", "paper_comparison",
+                         "adaptive_report", "all"}
 
 
 @pytest.mark.slow

@@ -112,6 +112,28 @@ rule explorer:
         "../../scripts/explorer.py"
 
 
+# A screenshot of the explorer at the optimum (headless chromium; not part of `all`): `make explorer`
+# publishes it as docs/figures/explorer.png (docs/artifacts.yaml).
+rule explorer_screenshot:
+    input:
+        page=f"{RESULTS}/explorer.html",
+        optimum=f"{RESULTS}/surrogate/optimum.yaml",
+    output:
+        f"{RESULTS}/figures/explorer.png",
+    threads: 1
+    resources:
+        mem_mb=scaled(1000),
+        runtime=5,
+    log:
+        log_file("explorer_screenshot"),
+    benchmark:
+        benchmark_file("explorer_screenshot")
+    conda:
+        "../../envs/ringdamper.yaml"  # the Python side; chromium itself is Debian's (docs/explorer.md)
+    script:
+        "../../scripts/explorer_screenshot.py"
+
+
 # The charts of the studies (`make studies`, `make fidelity`: minutes to hours of CPU, not part of
 # `all`) that were run into this results folder: `snakemake --report` with the target `study_charts`
 # beside `all` (`make report`) shows them; a study not run leaves its charts out, and no study job

@@ -12,9 +12,9 @@ function niceTicks(lo, hi, count) {
 }
 
 function logTicks(lo, hi) {
-  const ticks = [];
+  const ticks = [], factors = Math.log10(hi / lo) > 3 ? [1] : [1, 2, 5];  // decades only over a wide range
   for (let e = Math.floor(Math.log10(lo)); e <= Math.ceil(Math.log10(hi)); e++) {
-    for (const f of [1, 2, 5]) { const t = f * Math.pow(10, e); if (t >= lo * (1 - 1e-9) && t <= hi * (1 + 1e-9)) ticks.push(t); }
+    for (const f of factors) { const t = f * Math.pow(10, e); if (t >= lo * (1 - 1e-9) && t <= hi * (1 + 1e-9)) ticks.push(t); }
   }
   return ticks;
 }

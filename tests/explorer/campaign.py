@@ -3,7 +3,8 @@ tests/campaign/synthetic.py on 12 training and 4 validation rings, aggregated an
 (log transforms as configured), with static.nc contact states and an optimum.yaml.
 
 At the top amplitude 7 of the 12 training rings are "not reached" (status 2, NaN outputs), so fewer
-than ``min_training`` remain and no model is fitted there: the page must say so instead of drawing NaN.
+than ``min_training`` remain and no model is fitted there; at the lowest amplitude every ring is stuck
+(ζ = 0), so the model of ζ there is constant. The page must say both instead of drawing NaN.
 """
 from __future__ import annotations
 
@@ -47,12 +48,15 @@ def static_dataset(kappa) -> xr.Dataset:
 def build_tree(root: Path) -> dict:
     """Write the tree under ``root``; paths of its dataset.nc, kriging.nc, optimum.yaml and static.nc files."""
     samples = design(12, 4)
-    status = [0] * (ALPHA.size - 1) + [2]
+    unreached = set(samples[samples.split == "training"].gid.iloc[:N_UNREACHED])
     overrides = {}
-    for row in samples[samples.split == "training"].iloc[:N_UNREACHED].itertuples():
+    for row in samples.itertuples():
+        status = [0] * (ALPHA.size - 1) + [2 if row.gid in unreached else 0]
         ds = dnnm_dataset([row.kappa1, row.kappa2, row.kappa3], ALPHA, status)
-        for name in OUTPUTS:
-            ds[name].values[-1] = np.nan
+        ds["zeta"].values[0] = 0.0  # stuck
+        if row.gid in unreached:
+            for name in OUTPUTS:
+                ds[name].values[-1] = np.nan
         overrides[row.gid] = ds
     dataset = aggregate(samples, write_campaign(root, samples, ALPHA, overrides))
     mask = usable_mask(dataset)

@@ -65,6 +65,7 @@ def test_predictions_equal_the_python_surrogate(tree, browser):
             np.testing.assert_array_equal(np.isnan(got), np.isnan(want), err_msg=f"{name}: models differ")
             np.testing.assert_allclose(got, want, rtol=RTOL, atol=RTOL * scale, err_msg=name)
     assert np.isnan(ref["zeta"].values[-1]).all()  # the top amplitude has no model: compared as missing above
+    assert np.all(ref["zeta"].values[0] == 0) and np.all(ref["zeta_upper"].values[0] == 0)  # the constant model
 
 
 def test_a_slider_move_redraws_the_curves(tree, browser):
@@ -125,7 +126,7 @@ def test_the_page_says_where_there_is_no_model_and_never_shows_nan(tree, browser
     for fragment in ("", "#k=1,1,1", "#k=-1,-1,-1"):
         open_page(browser, page, fragment)
         text = browser.find_element(By.TAG_NAME, "body").text
-        assert "no model at 1 of 8 amplitudes" in text
+        assert "no model at 1 of 8 amplitudes" in text and "ζ: constant model at 1 amplitude (" in text
         assert "NaN" not in text and "NaN" not in browser.page_source
     assert browser.execute_script("return performance.getEntriesByType('resource').length") == 0  # offline
     timing = browser.execute_script("return explorer.timing")

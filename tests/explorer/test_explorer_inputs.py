@@ -52,6 +52,7 @@ def test_the_page_inlines_parameters_only_and_makes_no_request(tree):
     kriging = xr.open_dataset(paths["kriging"])
     zeta = data["models"]["zeta"]
     assert len(zeta) == ALPHA.size and zeta[-1] is None and all(m is not None for m in zeta[:-1])
+    assert zeta[0]["sigma"] == 0 and all(m["sigma"] > 0 for m in zeta[1:-1])  # stuck at the lowest amplitude
     assert len(zeta[0]["z"]) == int(kriging.n_training.sel(output="zeta").values[0]) == 12
     assert len(zeta[0]["rows"]) == 12 and int(kriging.n_training.values[0, -1]) == 12 - N_UNREACHED
     assert {r["split"] for r in data["rings"]} == {"training", "validation"} and len(data["rings"]) == 16

@@ -51,8 +51,12 @@ def read_input(path, kind: str) -> xr.Dataset:
 def finite_list(values) -> list:
     """``values`` as a (nested) list of floats, NaN and ±inf as None (JSON null)."""
     arr = np.asarray(values, dtype=float)
-    return [None if not math.isfinite(v) else float(v) for v in arr.ravel()] if arr.ndim == 1 else \
-        [finite_list(row) for row in arr]
+    return [finite(v) for v in arr.ravel()] if arr.ndim == 1 else [finite_list(row) for row in arr]
+
+
+def finite(value: float) -> float | None:
+    """``value``, or None (JSON null) when it is NaN or ±inf."""
+    return float(value) if math.isfinite(value) else None
 
 
 def model_parameters(surrogate: KrigingSurrogate, kriging: xr.Dataset) -> dict:
@@ -64,9 +68,9 @@ def model_parameters(surrogate: KrigingSurrogate, kriging: xr.Dataset) -> dict:
     for group in surrogate.groups.values():
         for out, ia, model in group:
             transform = surrogate.transform(out, ia)
-            models[out][ia] = {
-                "kernel": model.kernel, "scale": model.scale.tolist(), "nugget": model.nugget,
-                "beta": model.beta, "sigma": model.sigma, "variance_factor": model.variance_factor,
+            models[out][ia] = {  # a constant model (σ = 0) has no θ nor ν: null
+                "kernel": model.kernel, "scale": finite_list(model.scale), "nugget": finite(model.nugget),
+                "beta": model.beta, "sigma": model.sigma, "variance_factor": finite(model.variance_factor),
                 "transform": transform.kind, "offset": transform.offset,
                 "rows": rows_of[model.x.tobytes()].tolist(), "z": model.y.tolist()}
     return models

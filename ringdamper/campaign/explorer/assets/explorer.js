@@ -180,7 +180,7 @@ function modelNotes() {
     DATA.models[out].forEach((p, i) => { if (!p) none.push(i); else if (p.sigma === 0) constant.push(i); });
     const amps = (idx) => idx.map((i) => DATA.amplitude[i].toExponential(2)).join(", ");
     if (none.length) notes.push(`${NAMES[out]}: no model at ${none.length} of ${DATA.amplitude.length} amplitudes (α = ${amps(none)} ${DATA.amplitude_units}): too few usable training rings; not drawn.`);
-    if (constant.length) notes.push(`${NAMES[out]}: constant model at ${constant.length} amplitudes (α = ${amps(constant)} ${DATA.amplitude_units}): the training data are constant there, the band has zero width.`);
+    if (constant.length) notes.push(`${NAMES[out]}: constant model at ${constant.length} amplitude${constant.length > 1 ? "s" : ""} (α = ${amps(constant)} ${DATA.amplitude_units}): the training data are constant there, the band has zero width.`);
   }
   $("model-notes").innerHTML = notes.length ? notes.map((n) => `<li>${n}</li>`).join("") : "<li>Every output has a Gaussian-process model at every amplitude.</li>";
 }

@@ -4,7 +4,8 @@ tests/campaign/synthetic.py on 12 training and 4 validation rings, aggregated an
 
 At the top amplitude 7 of the 12 training rings are "not reached" (status 2, NaN outputs), so fewer
 than ``min_training`` remain and no model is fitted there; at the lowest amplitude every ring is stuck
-(ζ = 0), so the model of ζ there is constant. The page must say both instead of drawing NaN.
+(ζ = 0), so the model of ζ there is constant. The static solve of validation ring FAILED_STATIC
+failed (NaN fields, ``n_in_contact`` = -1). The page must say all three instead of drawing NaN.
 """
 from __future__ import annotations
 
@@ -25,11 +26,13 @@ ALPHA = np.geomspace(1e-6, 1e-4, 8)
 SETTINGS = {"n_starts": 2, "min_training": 6}
 N_PAIRS = 12
 N_UNREACHED = 7  # training rings not reached at the top amplitude
+FAILED_STATIC = "v003"
 
 
-def static_dataset(kappa) -> xr.Dataset:
+def static_dataset(kappa, failed: bool = False) -> xr.Dataset:
     """A static state of ``N_PAIRS`` pairs on two axial rows over ±2° of a 0.4 m radius: contact
-    pressure growing with κ1 towards the sector centre, gap opening where the pressure is 0."""
+    pressure growing with κ1 towards the sector centre, gap opening where the pressure is 0; with
+    ``failed``, the file of a failed solve (every field NaN, ``n_in_contact`` = -1)."""
     theta = np.tile(np.linspace(-0.035, 0.035, N_PAIRS // 2), 2)
     z = np.repeat([0.032, 0.040], N_PAIRS // 2)
     pressure = np.maximum(2e5 * (1 + 0.5 * kappa[0]) * (1 - (theta / 0.03) ** 2), 0.0)
@@ -41,8 +44,11 @@ def static_dataset(kappa) -> xr.Dataset:
             "gap": variable("pair", gap, "m", "static gap"),
             "kn": variable("pair", np.full(N_PAIRS, 1e8), "N/m", "normal stiffness"),
             "kt": variable("pair", np.full(N_PAIRS, 1e8), "N/m", "tangential stiffness")}
-    return xr.Dataset(data, coords=pair, attrs={"kappa": np.asarray(kappa, float), "status": 0,
-                                                "n_in_contact": int(np.sum(pressure > 0))})
+    if failed:
+        for name in data:
+            data[name] = data[name][0], np.full(N_PAIRS, np.nan), data[name][2]
+    return xr.Dataset(data, coords=pair, attrs={"kappa": np.asarray(kappa, float), "status": 99 if failed else 0,
+                                                "n_in_contact": -1 if failed else int(np.sum(pressure > 0))})
 
 
 def build_tree(root: Path) -> dict:
@@ -69,7 +75,7 @@ def build_tree(root: Path) -> dict:
     paths["optimum"].write_text(yaml.safe_dump({"kappa": KAPPA_STAR.tolist()}))
     for row in samples.itertuples():
         path = root / "geometry" / row.gid / "static.nc"
-        write_netcdf(static_dataset([row.kappa1, row.kappa2, row.kappa3]), path)
+        write_netcdf(static_dataset([row.kappa1, row.kappa2, row.kappa3], row.gid == FAILED_STATIC), path)
         paths["static"][row.gid] = path
     return paths
 

@@ -10,7 +10,7 @@ import xarray as xr
 
 from ringdamper.campaign.kriging import OUTPUTS, KrigingSurrogate
 
-from .campaign import ALPHA, build_page, build_tree
+from .campaign import ALPHA, FAILED_STATIC, build_page, build_tree
 
 pytestmark = pytest.mark.browser
 RTOL = 1e-9  # browser against numpy, relative; values clipped near 0 compare to RTOL x the output's scale
@@ -122,12 +122,16 @@ def test_a_shared_url_restores_its_kappa(tree, browser):
 def test_the_page_says_where_there_is_no_model_and_never_shows_nan(tree, browser):
     from selenium.webdriver.common.by import By
 
-    _, page = tree
-    for fragment in ("", "#k=1,1,1", "#k=-1,-1,-1"):
+    paths, page = tree
+    failed = xr.open_dataset(paths["dataset"]).sel(geometry=FAILED_STATIC)
+    at_failed = "#k=" + ",".join(str(float(failed[f"kappa{i}"])) for i in (1, 2, 3))
+    for fragment in ("", "#k=1,1,1", "#k=-1,-1,-1", at_failed):
         open_page(browser, page, fragment)
         text = browser.find_element(By.TAG_NAME, "body").text
         assert "no model at 1 of 8 amplitudes" in text and "ζ: constant model at 1 amplitude (" in text
         assert "NaN" not in text and "NaN" not in browser.page_source
+    assert f"nearest computed ring {FAILED_STATIC} (validation)" in text and "its static solve failed" in text
+    assert browser.find_element(By.ID, "map-pressure").find_elements(By.TAG_NAME, "circle") == []
     assert browser.execute_script("return performance.getEntriesByType('resource').length") == 0  # offline
     timing = browser.execute_script("return explorer.timing")
     print(f"\nexplorer timing (ms): interactive {timing['interactive_ms']:.0f}, redraw {timing['redraw_ms']}")

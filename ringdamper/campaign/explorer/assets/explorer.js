@@ -146,14 +146,14 @@ const VIRIDIS = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253
 const MAGMA = [[0, 0, 4], [81, 18, 124], [183, 55, 121], [252, 137, 97], [252, 253, 191]];
 function drawContact(ring) {
   const c = ring && ring.contact;
-  $("contact-title").textContent = c ? `Contact maps of the nearest computed ring ${ring.gid} (${ring.split}), κ = ${kappaText(ring.kappa)}: ${c.n_in_contact} of ${c.pressure.length} pairs in contact`
+  $("contact-title").textContent = c ? `Contact maps of the nearest computed ring ${ring.gid} (${ring.split}), κ = ${kappaText(ring.kappa)}: ${c.n_in_contact >= 0 ? `${c.n_in_contact} of ${c.pressure.length} pairs in contact` : "its static solve failed"}`
     : "No static state was given for the nearest ring.";
   for (const [kind, scale, unit, stops, what] of [["pressure", 1e-3, "kPa", VIRIDIS, "static contact pressure N0 / area"], ["gap", 1e6, "µm", MAGMA, "static gap"]]) {
     if (!c) { $(`map-${kind}`).innerHTML = ""; continue; }
     const v = c[kind].map((x) => (x === null ? null : x * scale));
     const top = Math.max(0, ...v.filter((x) => x !== null)), vmax = top > 0 ? top : 1;
     charts[kind].o.title = `${what} (${unit})`;
-    charts[kind].draw([{ type: "points", x: c.s.map((s) => s * 1e3), y: c.z.map((z) => z * 1e3), cls: "pair", r: 4,
+    charts[kind].draw([{ type: "points", x: c.s.map((s) => (s === null ? null : s * 1e3)), y: c.z.map((z) => (z === null ? null : z * 1e3)), cls: "pair", r: 4,
       fill: v.map((x) => (x === null ? "#ccc" : ramp(x / vmax, stops))), names: v.map((x) => (x === null ? "no value" : `${x.toPrecision(3)} ${unit}`)) }]);
     $(`bar-${kind}`).innerHTML = `<span>0</span><span class="bar" style="background:linear-gradient(to right,${stops.map((s) => `rgb(${s})`).join(",")})"></span><span>${top > 0 ? `${top.toPrecision(3)} ${unit}` : `${unit}: every pair at 0`}</span>`;
   }

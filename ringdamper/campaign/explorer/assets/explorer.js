@@ -180,6 +180,8 @@ function modelNotes() {
     DATA.models[out].forEach((p, i) => { if (!p) none.push(i); else if (p.sigma === 0) constant.push(i); });
     const amps = (idx) => idx.map((i) => DATA.amplitude[i].toExponential(2)).join(", ");
     if (none.length) notes.push(`${NAMES[out]}: no model at ${none.length} of ${DATA.amplitude.length} amplitudes (α = ${amps(none)} ${DATA.amplitude_units}): too few usable training rings; not drawn.`);
+    const bad = surrogate.unfactorised[out];
+    if (bad.length) notes.push(`${NAMES[out]}: the browser could not factorise the model at ${bad.length} amplitude${bad.length > 1 ? "s" : ""} (α = ${amps(bad)} ${DATA.amplitude_units}): not drawn.`);
     if (constant.length) notes.push(`${NAMES[out]}: constant model at ${constant.length} amplitude${constant.length > 1 ? "s" : ""} (α = ${amps(constant)} ${DATA.amplitude_units}): the training data are constant there, the band has zero width.`);
   }
   $("model-notes").innerHTML = notes.length ? notes.map((n) => `<li>${n}</li>`).join("") : "<li>Every output has a Gaussian-process model at every amplitude.</li>";
@@ -197,6 +199,7 @@ function update() {
   drawSummary(pred);
   writeHash();
   const t1 = performance.now();
+  if (timing.redraw_ms.length >= 1000) { timing.redraw_ms.length = 0; timing.redraw_frame_ms.length = 0; }
   timing.redraw_ms.push(t1 - t0);
   requestAnimationFrame(() => setTimeout(() => timing.redraw_frame_ms.push(performance.now() - t0), 0));
 }

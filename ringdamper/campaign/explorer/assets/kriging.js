@@ -120,7 +120,14 @@ class Surrogate {
     this.outputs = Object.keys(data.models);
     this.nAmp = data.amplitude.length;
     this.models = {};
-    for (const out of this.outputs) this.models[out] = data.models[out].map((p) => (p ? new KrigingModel(p, data.training_kappa) : null));
+    this.unfactorised = {};  // output -> amplitude indices whose R the browser could not factorise
+    for (const out of this.outputs) {
+      this.unfactorised[out] = [];
+      this.models[out] = data.models[out].map((p, i) => {
+        if (!p) return null;
+        try { return new KrigingModel(p, data.training_kappa); } catch (err) { this.unfactorised[out].push(i); return null; }
+      });
+    }
   }
 
   // output -> {median, lower, upper} arrays over the amplitudes; null where no model was fitted.

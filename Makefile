@@ -7,7 +7,7 @@ CORES  ?= 2
 # one BLAS/OpenMP thread per process: jobs run side by side on a 2-core machine
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 
-.PHONY: campaign test test-cluster bench studies fidelity report lint clean
+.PHONY: campaign test test-explorer test-cluster bench studies fidelity explorer report lint clean
 
 $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV) || python3 -m venv $(VENV)
@@ -24,6 +24,11 @@ campaign: $(STAMP)
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q -n 2 --dist loadgroup --durations=15
+
+# the design explorer in a real browser (Debian's chromium + chromium-driver, driven by selenium): the tests
+# of marker `browser`, which `make test` deselects (pyproject.toml addopts; docs/explorer.md)
+test-explorer: $(STAMP)
+	$(BIN)/python -m pytest -q -m browser tests/explorer
 
 # the test campaign on a real single-node SLURM of this machine (root: installs and starts it), its
 # arrays against a local run of the same configuration; the daemons are stopped on exit
@@ -45,6 +50,12 @@ studies: $(STAMP)
 fidelity: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) --keep-going fidelity
 	$(BIN)/python -m ringdamper.publish fidelity
+
+# a screenshot of the design explorer at the optimum (headless chromium, after the campaign), then its
+# committed copy docs/figures/explorer.png (docs/artifacts.yaml, route `explorer`)
+explorer: $(STAMP)
+	$(BIN)/snakemake --cores $(CORES) results/figures/explorer.png
+	$(BIN)/python -m ringdamper.publish explorer
 
 # the report of the campaign, with the charts of the studies run into results/ (target study_charts)
 report: $(STAMP)

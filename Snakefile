@@ -45,6 +45,7 @@ rule all:
         f"{RESULTS}/figures/fig14_kappa1.png",
         f"{RESULTS}/surrogate/optimum.yaml",
         f"{RESULTS}/figures/fig17_envelopes.png",
+        f"{RESULTS}/explorer.html",
         f"{RESULTS}/sensitivity/sobol_global.nc",
         f"{RESULTS}/figures/fig18_sobol_global.png",
         f"{RESULTS}/geometry/{OPTIMUM_GID}/dnnm.nc",

@@ -9,7 +9,7 @@ import numpy as np
 from ..static.closure import pair_closure, station_means
 
 
-def _surface_coords(ds):
+def surface_coords(ds):
     """Circumferential arc position (mm, from the sector centre) and axial position (mm)."""
     theta = np.arctan2(ds.y.values, ds.x.values)
     radius = np.hypot(ds.x.values, ds.y.values)
@@ -19,7 +19,7 @@ def _surface_coords(ds):
 def draw_surface_map(ax, static, values, vmax, cmap, title, label=None):
     """Per-pair ``values`` over the ring's upper surface of ``static`` on ``ax``, colour scale
     [0, vmax] with a colour bar (``label``)."""
-    s, z = _surface_coords(static)
+    s, z = surface_coords(static)
     sc = ax.scatter(s, z, c=values, vmin=0, vmax=vmax, cmap=cmap, s=40, marker="s")
     ax.set_title(title, fontsize=8)
     ax.set_ylabel("z (mm)", fontsize=8)

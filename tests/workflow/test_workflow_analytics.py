@@ -94,7 +94,7 @@ def test_report_holds_every_figure_and_table(campaign):
     assert {"optimum_maps.png", "optimum_backbones_frf.png", "optimum_surrogate_check.png"} <= set(figures)
     assert {"table3.html", "paper_comparison.html", "validation_metrics.html", "sobol_global.html",
             "sobol_local.html", "optimum.html", "optimum_check.html"} <= set(tables)
-    for name in figures + tables:
+    for name in figures + tables + ["explorer.html"]:
         assert name in html, name
     comparison = pd.read_csv(campaign / "tables" / "paper_comparison.csv")
     assert comparison["paper source"].str.contains("§").all()

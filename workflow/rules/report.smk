@@ -85,6 +85,55 @@ rule report_tables:
         "../../scripts/report_tables.py"
 
 
+# The design explorer: one self-contained page evaluating the Kriging models in the browser
+# (docs/explorer.md), with the computed rings' backbones and static contact maps.
+rule explorer:
+    input:
+        dataset=f"{RESULTS}/campaign/dataset.nc",
+        kriging=f"{RESULTS}/surrogate/kriging.nc",
+        optimum=f"{RESULTS}/surrogate/optimum.yaml",
+        static=campaign_files("static.nc"),
+    output:
+        report(f"{RESULTS}/explorer.html", category="Design space", caption="../report/explorer.rst"),
+    params:
+        config=sections(*EXPLORATION),
+        gids=lambda wildcards: campaign_gids(),
+    threads: 1
+    resources:
+        mem_mb=scaled(500),
+        runtime=5,
+    log:
+        log_file("explorer"),
+    benchmark:
+        benchmark_file("explorer")
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/explorer.py"
+
+
+# A screenshot of the explorer at the optimum (headless chromium; not part of `all`): `make explorer`
+# publishes it as docs/figures/explorer.png (docs/artifacts.yaml).
+rule explorer_screenshot:
+    input:
+        page=f"{RESULTS}/explorer.html",
+        optimum=f"{RESULTS}/surrogate/optimum.yaml",
+    output:
+        f"{RESULTS}/figures/explorer.png",
+    threads: 1
+    resources:
+        mem_mb=scaled(1000),
+        runtime=5,
+    log:
+        log_file("explorer_screenshot"),
+    benchmark:
+        benchmark_file("explorer_screenshot")
+    conda:
+        "../../envs/ringdamper.yaml"  # the Python side; chromium itself is Debian's (docs/explorer.md)
+    script:
+        "../../scripts/explorer_screenshot.py"
+
+
 # The charts of the studies (`make studies`, `make fidelity`: minutes to hours of CPU, not part of
 # `all`) that were run into this results folder: `snakemake --report` with the target `study_charts`
 # beside `all` (`make report`) shows them; a study not run leaves its charts out, and no study job

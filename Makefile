@@ -7,7 +7,7 @@ CORES  ?= 2
 # one BLAS/OpenMP thread per process: jobs run side by side on a 2-core machine
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 
-.PHONY: campaign test test-explorer test-cluster bench studies fidelity explorer report lint clean
+.PHONY: campaign test test-explorer test-cluster bench studies fidelity explorer paper-design report lint clean
 
 $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV) || python3 -m venv $(VENV)
@@ -56,6 +56,14 @@ fidelity: $(STAMP)
 explorer: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES) results/figures/explorer.png
 	$(BIN)/python -m ringdamper.publish explorer
+
+# the campaign with the paper's fixed design (sampling.design: paper) into results/paper-design, then
+# its row of the design comparison (docs/artifacts.yaml, route `paper-design`), which the report of an
+# adaptive campaign shows beside its own
+paper-design: $(STAMP)
+	$(BIN)/snakemake --workflow-profile profiles/default --cores $(CORES) \
+		--config "sampling={design: paper}" results=results/paper-design
+	$(BIN)/python -m ringdamper.publish paper-design --results results/paper-design
 
 # the report of the campaign, with the charts of the studies run into results/ (target study_charts)
 report: $(STAMP)

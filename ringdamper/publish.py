@@ -1,6 +1,6 @@
 """Publish a study's results as the committed artifacts under ``docs/``: the one route from
-``results/`` to ``docs/calibration``, ``docs/fidelity``, ``docs/epmc_time_domain`` and
-``docs/figures`` (docs/design.md, "Committed study artifacts").
+``results/`` to ``docs/calibration``, ``docs/fidelity``, ``docs/epmc_time_domain``,
+``docs/figures`` and ``docs/adaptive`` (docs/design.md, "Committed study artifacts").
 
 The manifest ``docs/artifacts.yaml`` lists, per route (the Makefile target that runs the study),
 every committed artifact (path under ``docs/``) and the result it is a plain copy of (path under the

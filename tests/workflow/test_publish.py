@@ -8,7 +8,7 @@ import pytest
 from ringdamper.publish import ManifestError, main, publish, read_manifest
 from tests.snakemake_run import REPO, run_snakemake
 
-FOLDERS = ("calibration", "fidelity", "epmc_time_domain", "figures")
+FOLDERS = ("calibration", "fidelity", "epmc_time_domain", "figures", "adaptive")
 
 
 def _artifacts() -> list[str]:

@@ -14,7 +14,7 @@ from ringdamper.campaign.adaptive.batch import select_batch
 from ringdamper.campaign.adaptive.design import candidates
 from ringdamper.campaign.adaptive.model import fit_surrogate
 from ringdamper.campaign.adaptive.rounds import RoundFailedError, predicted_optimum, run_loop, training_dataset
-from ringdamper.campaign.adaptive.stopping import BUDGET, decide
+from ringdamper.campaign.adaptive.stopping import BUDGET, CONVERGED, decide, settled_outputs
 from ringdamper.campaign.sampling import make_samples, maximin_lhs
 from ringdamper.config import ConfigError, validate_config
 from ringdamper.io import write_netcdf
@@ -44,7 +44,8 @@ CONFIG = {"sampling": {"seed": 3, "factorial_levels": [-1.0, 1.0], "n_lhs_traini
                        "named_validation": [], "lhs_candidates": 20, "min_distance": 0.05, "design": "adaptive",
                        "adaptive": {"n_initial": 10, "batch": 3, "n_max": 60, "n_candidates": 1024,
                                     "exploit_weight": 1.0, "batch_spacing": 0.15, "loo_tolerance": 0.3,
-                                    "kappa_tolerance": 0.1, "zeta_tolerance": 0.01, "stable_rounds": 2}},
+                                    "loo_plateau": 0.1, "kappa_tolerance": 0.1, "zeta_tolerance": 0.01,
+                                    "stable_rounds": 2}},
           "surrogate": {"min_training": 8, "n_starts": 4},
           "exploration": {"optimum_max_level": 1.0}}
 
@@ -125,10 +126,28 @@ def test_a_batch_is_spread_by_the_distance_rule():
 def test_the_budget_stops_the_loop_without_an_error():
     adaptive = CONFIG["sampling"]["adaptive"]
     optima = [{"kappa": [0.0, 0.0, 0.0], "zeta_max": 1e-3}, {"kappa": [0.5, 0.0, 0.0], "zeta_max": 2e-3}]
-    going = decide({"zeta": 0.5}, optima, adaptive["n_max"] - 1, adaptive)
+    going = decide([{"zeta": 0.5}], optima, adaptive["n_max"] - 1, adaptive)
     assert not going["stop"]
-    stopped = decide({"zeta": 0.5}, optima, adaptive["n_max"], adaptive)
+    stopped = decide([{"zeta": 0.5}], optima, adaptive["n_max"], adaptive)
     assert stopped["stop"] and stopped["reason"] == BUDGET and stopped["worst_loo"] == 0.5
+
+
+def test_an_error_on_a_plateau_settles_and_a_shrinking_one_does_not():
+    """q_res_z stays above the tolerance but gained < 10 % over two rounds: settled on its plateau; zeta
+    is below the tolerance; gamma still fell by 20 %: not settled, so the loop goes on until it too
+    stops improving. With the plateau off only the tolerance counts."""
+    adaptive = {**CONFIG["sampling"]["adaptive"], "loo_tolerance": 0.3, "loo_plateau": 0.1, "stable_rounds": 2}
+    history = [{"q_res_z": 0.51, "zeta": 0.35, "gamma": 0.50}, {"q_res_z": 0.48, "zeta": 0.31, "gamma": 0.45},
+               {"q_res_z": 0.50, "zeta": 0.30, "gamma": 0.42}, {"q_res_z": 0.47, "zeta": 0.29, "gamma": 0.36}]
+    assert settled_outputs(history, adaptive) == {"q_res_z": "plateau", "zeta": "tolerance", "gamma": None}
+    optima = [{"kappa": [1.0, -1.0, -1.0], "zeta_max": 2e-3}] * 4
+    assert not decide(history, optima, 48, adaptive)["stop"]
+    flat = history[:-1] + [{**history[-1], "gamma": 0.42}]
+    stopped = decide(flat, optima, 48, adaptive)
+    assert stopped["stop"] and stopped["reason"] == CONVERGED and stopped["plateau"] == ["gamma", "q_res_z"]
+    assert not decide(flat, optima, 48, {**adaptive, "loo_plateau": 0.0})["stop"]
+    moving = optima[:-1] + [{"kappa": [0.8, -1.0, -1.0], "zeta_max": 2e-3}]
+    assert not decide(flat, moving, 48, adaptive)["stop"]
 
 
 def test_a_failed_ring_is_excluded_and_a_round_of_failures_is_an_error_naming_them(tmp_path):
@@ -171,6 +190,7 @@ def test_both_designs_keep_the_validation_and_reference_rings(campaign_config):
     ("n_initial", 20, "sampling.adaptive.n_initial = 20 is below surrogate.min_training = 25"),
     ("n_max", 29, "sampling.adaptive.n_max = 29 is below sampling.adaptive.n_initial = 30"),
     ("loo_tolerance", 0.0, "sampling.adaptive.loo_tolerance = 0.0 is out of range: allowed (0, +inf)"),
+    ("loo_plateau", 1.0, "sampling.adaptive.loo_plateau = 1.0 is out of range: allowed [0, 1)"),
     ("kappa_tolerance", -0.1, "sampling.adaptive.kappa_tolerance = -0.1 is out of range: allowed (0, +inf)"),
     ("zeta_tolerance", 0.0, "sampling.adaptive.zeta_tolerance = 0.0 is out of range: allowed (0, +inf)"),
 ])

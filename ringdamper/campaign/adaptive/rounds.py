@@ -84,7 +84,8 @@ def plan_round(dataset: xr.Dataset, mask: xr.DataArray, history: list[dict], con
     points = candidates(config["sampling"], round_, validation)
     optimum = predicted_optimum(models.surrogate, points, q_max)
     n_computed = dataset.sizes["geometry"]
-    decision = decide(loo, [r["optimum"] for r in history] + [optimum], n_computed, adaptive)
+    decision = decide([r["loo"] for r in history] + [loo], [r["optimum"] for r in history] + [optimum],
+                      n_computed, adaptive)
     record = {"round": round_, "n_computed": n_computed, "n_usable": int(usable.sum()),
               "excluded": [str(g) for g in dataset.geometry.values[~usable]],
               "loo": loo, "optimum": optimum, **decision, "chosen": []}

@@ -1,8 +1,7 @@
-"""Adaptive harmonic truncation along a backbone (docs/nonlinear_core.md §4.4).
+"""Adaptive harmonic truncation along a backbone (docs/nonlinear_core.md §4.5).
 
 The continuation runs at the base truncation H₀ over the whole amplitude grid. Then, point by
-point, a usable grid point is solved again at H + 2 (:func:`ringdamper.nonlinear.epmc.resolve_point`,
-Newton at its fixed α from its solution zero-padded in the new harmonics) while
+point, a usable grid point is solved again at H + 2 (:func:`_raise`) while
 
 * its truncation indicator ε_H exceeds :data:`ringdamper.nonlinear.truncation.THRESHOLD`, or
 * preloaded pairs lift off during the period (``lifting_pairs > 0``,
@@ -12,7 +11,7 @@ Newton at its fixed α from its solution zero-padded in the new harmonics) while
 
 up to ``H_max``. Lift-off has its own rule because it does not vanish as H grows (the clipped normal
 force feeds every harmonic) while the highest-harmonic energy can stay below its threshold where
-H₀ is off by 24 % (the default ring's top point): there the measure is how much the point moves.
+H₀ is off by 34 % in ζ (the default ring's top point): there the measure is how much the point moves.
 A point whose indicators are quiet keeps H₀ and its continuation solution untouched. A higher-H
 Newton that fails keeps the last converged truncation and says so in the point's reason. Every
 output of a point (backbone, E-EBM, indicators, status) comes from its final truncation.

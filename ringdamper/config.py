@@ -147,6 +147,10 @@ def _solver_errors(config: dict) -> list[str]:
     if d["n_harmonics"] > config["reduction"]["n_harmonics"]:
         errors.append(f"dnnm.n_harmonics = {d['n_harmonics']} must not exceed "
                       f"reduction.n_harmonics = {config['reduction']['n_harmonics']}")
+    top = d.get("max_harmonics", d["n_harmonics"])
+    if not d["n_harmonics"] <= top <= config["reduction"]["n_harmonics"]:
+        errors.append(f"dnnm.max_harmonics = {top} must lie in [dnnm.n_harmonics, reduction.n_harmonics] = "
+                      f"[{d['n_harmonics']}, {config['reduction']['n_harmonics']}]")
     if d["n_time_samples"] < 2 * d["n_harmonics"] + 1:
         errors.append(f"dnnm.n_time_samples = {d['n_time_samples']} must be at least "
                       f"2 n_harmonics + 1 = {2 * d['n_harmonics'] + 1} (sampling theorem)")

@@ -112,7 +112,7 @@ def _geometry_chain(config: dict) -> dict:
     out = {}
     backbones = {}
     for H in harmonics:
-        cfg = {**config, "dnnm": {**config["dnnm"], "n_harmonics": H,
+        cfg = {**config, "dnnm": {**config["dnnm"], "n_harmonics": H, "max_harmonics": H,
                                   "n_time_samples": max(config["dnnm"]["n_time_samples"], 4 * H + 4)}}
         t = time.perf_counter()
         ds = run_dnnm(reduced_all, static, cfg, target_hz, w_default)

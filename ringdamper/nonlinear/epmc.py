@@ -40,7 +40,9 @@ class Backbone:
     ``drift`` (largest dropped rigid-body equilibrium, see the gauge). ``branch``
     holds every accepted continuation point ``(α, ω, ξ)``; ``model`` the condensed HBM and
     ``phase_index`` the unknown fixed by the phase condition (what :meth:`state` and
-    :class:`EPMCProblem` need to restart from a point)."""
+    :class:`EPMCProblem` need to restart from a point), ``pole_window`` the ``(lo, hi)`` band of
+    :func:`pole_modes` that chose its explicit modes and ``drift_tol`` the DRIFT limit (what
+    :func:`resolve_point` needs to build the same problem at another H)."""
 
     alpha: np.ndarray
     omega: np.ndarray
@@ -58,6 +60,8 @@ class Backbone:
     model: CondensedHBM = field(repr=False)
     phase_index: int = -1
     wall_time: float = 0.0
+    pole_window: tuple = (0.0, 0.0)
+    drift_tol: float = 1e-8
 
     def state(self, i: int) -> np.ndarray:
         """Unknown vector ``z = [y, ω, ξ]`` of grid point ``i``; sets the model's pinned
@@ -161,8 +165,8 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     nt = default_nt(H) if nt is None else nt
     steps = steps or StepControl(initial=0.2, minimum=1e-4, maximum=0.5)
     omega0, phi = _stuck_mode(structure, contacts, mode, omega_target)
-    explicit = pole_modes(structure, H, omega0 * (1 - 2 * pole_band), omega0 * (1 + pole_band))
-    model = CondensedHBM(structure, contacts, H, nt, explicit=explicit)
+    window = (omega0 * (1 - 2 * pole_band), omega0 * (1 + pole_band))
+    model = CondensedHBM(structure, contacts, H, nt, explicit=pole_modes(structure, H, *window))
     if gauge_reference is not None:
         model.eta_ref = np.asarray(gauge_reference, float).copy()
     _, phase_index = _initial_guess(model, phi, omega0, 1.0)
@@ -179,7 +183,8 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
                                      steps, tol, max_iter, accept=problem.accept,
                                      s_start=np.log(alpha_start), on_failure=problem.on_failure,
                                      jump_mask=problem.jump_mask())
-    return _collect(_joined(stuck, run, np.log(alpha)), model, alpha, problem, time.perf_counter() - t0)
+    return _collect(_joined(stuck, run, np.log(alpha)), model, alpha, problem, time.perf_counter() - t0,
+                    window)
 
 
 def _stuck_mode(structure, contacts, mode, omega_target):
@@ -266,6 +271,83 @@ def _joined(stuck: list, run, grid) -> NaturalResult:
     return out
 
 
+def resolve_point(backbone: Backbone, i: int, H: int, nt: int | None = None, tol: float = 1e-8,
+                  max_iter: int = 20, neighbour: tuple | None = None) -> tuple[Backbone | None, str]:
+    """Grid point ``i`` of ``backbone`` solved again at ``H`` harmonics (``nt`` AFT samples, default
+    :func:`default_nt`) by Newton at its fixed α: ``(one-point backbone, "")``, or ``(None, why)``
+    if Newton does not converge. The problem is the backbone's at ``H`` (same structure, which must
+    hold harmonics up to ``H``; same explicit modes of the shared harmonics, phase unknown, gauge
+    position and pinned directions); the start is the point's solution with the harmonics above
+    the backbone's set to zero, plus, with ``neighbour = (lower, j, higher)`` (another grid point:
+    ``lower`` its backbone at this backbone's H, ``j`` its index there, ``higher`` its one-point
+    backbone at ``H``), the change that raising H made to that point."""
+    t0 = time.perf_counter()
+    base = backbone.model
+    nt = default_nt(H) if nt is None else nt
+    model = CondensedHBM(base.structure, base.contacts, H, nt,
+                         explicit=pole_modes(base.structure, H, *backbone.pole_window))
+    if not all(np.array_equal(a, b) for a, b in zip(base.S, model.S)):
+        raise ValueError("the explicit modes of the shared harmonics differ between the two truncations")
+    z0 = _padded_state(backbone, i, model)
+    if neighbour is not None:
+        lower, j, higher = neighbour
+        z0 += higher.state(0) - _padded_state(lower, j, model)
+    model.pinned = backbone.pinned[i].copy()
+    if model.zero_modes.size:
+        model.eta_ref = z0[model.eta_slices[0].start + model.zero_modes].copy()
+    problem = EPMCProblem(model, _same_unknown(base, model, backbone.phase_index), backbone.drift_tol)
+    s = np.log(backbone.alpha[i])
+    res = newton(lambda z, jac: problem.fun(z, s, jac), z0, problem.scale, tol, max_iter)
+    if not res.converged:
+        return None, f"Newton at H = {H}: {res.reason}"
+    run = NaturalResult(np.array([s]), [ContinuationPoint(s, res.z, res.payload, res.iterations)],
+                        np.zeros(1, int), [""], [])
+    return _collect(run, model, backbone.alpha[i:i + 1], problem, time.perf_counter() - t0,
+                    backbone.pole_window), ""
+
+
+def _padded_state(backbone: Backbone, i: int, model: CondensedHBM) -> np.ndarray:
+    """Unknowns ``z`` of ``model`` (more harmonics than the backbone's) from point ``i`` of
+    ``backbone``, zero in the extra harmonics."""
+    d = np.zeros((model.C, model.p))
+    d[:backbone.model.C] = backbone.d[i]
+    eta = [backbone.eta[h][i] if h <= backbone.H else np.zeros(m.w2.size, complex)
+           for h, m in enumerate(model.modal)]
+    return np.r_[model.pack(d, eta), backbone.omega[i], backbone.xi[i]]
+
+
+def continue_point(backbone: Backbone, j: int, alpha: float, tol: float = 1e-8, max_iter: int = 20,
+                   steps: StepControl | None = None) -> tuple[Backbone | None, str]:
+    """Continuation at the truncation of ``backbone`` from its grid point ``j`` to the amplitude
+    ``alpha`` (above α_j; ``steps`` as in :func:`epmc`): ``(one-point backbone, "")``, or ``(None,
+    why)`` if it does not get there. The problem, gauge position and pinned directions are those of
+    point ``j``; the model is shared with ``backbone``."""
+    t0 = time.perf_counter()
+    model = backbone.model
+    z0 = backbone.state(j)
+    if model.zero_modes.size:
+        model.eta_ref = z0[model.eta_slices[0].start + model.zero_modes].copy()
+    problem = EPMCProblem(model, backbone.phase_index, backbone.drift_tol)
+    run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log([alpha]), problem.scale,
+                                 steps or StepControl(initial=0.2, minimum=1e-4, maximum=0.5), tol, max_iter,
+                                 accept=problem.accept, s_start=np.log(backbone.alpha[j]),
+                                 on_failure=problem.on_failure, jump_mask=problem.jump_mask())
+    if run.points[0] is None:
+        return None, f"continuation at H = {model.H} from alpha = {backbone.alpha[j]:.4g}: {run.reason[0]}"
+    return _collect(run, model, np.array([alpha]), problem, time.perf_counter() - t0,
+                    backbone.pole_window), ""
+
+
+def _same_unknown(base: CondensedHBM, model: CondensedHBM, k: int) -> int:
+    """Index in ``model``'s unknowns of unknown ``k`` of ``base``, the same problem truncated at fewer
+    harmonics: contact slots keep their index (slot-major layout), explicit modal coordinates shift
+    by the extra contact slots."""
+    if k < base.n_d:
+        return k
+    h = next(h for h, sl in enumerate(base.eta_slices) if sl.start <= k < sl.stop)
+    return model.eta_slices[h].start + k - base.eta_slices[h].start
+
+
 def _initial_guess(model: CondensedHBM, phi: np.ndarray, omega0: float, alpha0: float):
     """Linear stuck mode at amplitude ``α₀``, phase rotated so the phase unknown is real."""
     m1 = model.modal[1]
@@ -288,7 +370,7 @@ def _initial_guess(model: CondensedHBM, phi: np.ndarray, omega0: float, alpha0: 
     return np.r_[y, omega0, 0.0], phase
 
 
-def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall) -> Backbone:
+def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall, window) -> Backbone:
     n = alpha.size
     nan = np.full(n, np.nan)
     omega, xi, drift = nan.copy(), nan.copy(), nan.copy()
@@ -315,4 +397,4 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall) -> Bac
     return Backbone(alpha=alpha, omega=omega, xi=xi, zeta=xi / (2 * omega), status=status,
                     reason=reason, iterations=iters, d=d, lam=lam, eta=eta, pinned=pinned,
                     drift=drift, branch=branch, model=model, phase_index=problem.phase_index,
-                    wall_time=wall)
+                    wall_time=wall, pole_window=tuple(window), drift_tol=problem.drift_tol)

@@ -16,24 +16,27 @@ import numpy as np
 import xarray as xr
 
 from ringdamper.io import declared_dataset, nan_values, variable
+from ringdamper.nonlinear.adaptive import adapt_harmonics
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc
 from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.normalisation import normalised_frequency
-from ringdamper.nonlinear.separation import separation_indicators, warn_separation
+from ringdamper.nonlinear.separation import warn_separation
 from ringdamper.nonlinear.structure import HarmonicData, Structure
-from ringdamper.nonlinear.truncation import highest_harmonic_fraction, warn_truncation
-from ringdamper.status import CHAIN_FAILED, usable_status
+from ringdamper.nonlinear.truncation import warn_truncation
+from ringdamper.status import CHAIN_FAILED
 
 log = logging.getLogger(__name__)
 
 
-def structure_from_reduced(reduced: xr.Dataset, n_harmonics: int) -> Structure:
-    """Per-harmonic modal data of ``reduced.nc`` as a cyclic :class:`Structure` (h = 0..H)."""
+def structure_from_reduced(reduced: xr.Dataset, n_harmonics: int, field: str = "dnnm.n_harmonics") -> Structure:
+    """Per-harmonic modal data of ``reduced.nc`` as a cyclic :class:`Structure` (h = 0..H); ``field``
+    names the setting that asked for H in the error when reduced.nc holds fewer harmonics."""
     H = int(n_harmonics)
     available = int(reduced.sizes["harmonic"]) - 1
     if H > available:
-        raise ValueError(f"dnnm.n_harmonics = {H} exceeds the {available} harmonics of reduced.nc")
+        raise ValueError(f"{field} = {H} exceeds the {available} harmonics of reduced.nc "
+                         f"(reduction.n_harmonics): allowed [1, {available}]")
     data = []
     for h in range(H + 1):
         r = reduced.isel(harmonic=h)
@@ -70,12 +73,17 @@ def amplitude_grid(dnnm_cfg: dict) -> np.ndarray:
 
 
 def solve_backbone(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: float,
-                   alpha: np.ndarray, n_harmonics: int, nt: int | None = None):
+                   alpha: np.ndarray, n_harmonics: int, nt: int | None = None,
+                   structure_harmonics: int | None = None):
     """EPMC backbone of the mode nearest ``target_hz`` at ``n_harmonics`` (``nt`` AFT samples, default
     :func:`ringdamper.nonlinear.fourier.default_nt`) on ``alpha``, and its E-EBM:
-    ``(backbone, contacts, eebm result, omega_stuck)``."""
+    ``(backbone, contacts, eebm result, omega_stuck)``. The backbone's structure holds harmonics up
+    to ``structure_harmonics`` (default ``n_harmonics``; more lets its points be solved again at
+    a higher truncation)."""
     cfg = config["dnnm"]
     structure = structure_from_reduced(reduced, n_harmonics)
+    if structure_harmonics is not None and structure_harmonics > n_harmonics:
+        structure = structure_from_reduced(reduced, structure_harmonics, "dnnm.max_harmonics")
     contacts = contacts_from_static(static, config["contact"], cfg["friction_law"])
     omega_stuck = target_stuck_frequency(structure, contacts, target_hz)
     backbone = epmc(structure, contacts, alpha, H=n_harmonics, nt=nt, omega_target=omega_stuck,
@@ -85,27 +93,40 @@ def solve_backbone(reduced: xr.Dataset, static: xr.Dataset, config: dict, target
 
 def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: float,
              omega_stuck_default: float) -> xr.Dataset:
-    """Backbone (EPMC) of the mode nearest ``target_hz`` and its E-EBM, as the dnnm.nc dataset."""
+    """Backbone (EPMC) of the mode nearest ``target_hz`` at ``dnnm.n_harmonics``, its points solved
+    again at up to ``dnnm.max_harmonics`` where their indicators ask for it
+    (:mod:`ringdamper.nonlinear.adaptive`), and their E-EBM, as the dnnm.nc dataset."""
     cfg = config["dnnm"]
     start = time.perf_counter()
     alpha = amplitude_grid(cfg)
-    backbone, contacts, res, omega_stuck = solve_backbone(reduced, static, config, target_hz, alpha,
-                                                          cfg["n_harmonics"], cfg["n_time_samples"])
-    highest = highest_harmonic_fraction(backbone.model.modal, backbone.eta, backbone.omega)
-    warn_truncation(highest, alpha)
-    n_min, lifting = separation_indicators(backbone, contacts, usable_status(res.status))
-    warn_separation(lifting, alpha, cfg["n_harmonics"])
-    values = {"omega0": normalised_frequency(res.omega, omega_stuck_default), "frequency": res.frequency,
-              "zeta": res.zeta, "gamma": res.gamma, "phi": res.phi, "q_res_z": res.q_res_peak,
-              "q_res_z_h1": res.q_res_h1, "energy_dissipated": res.energy_dissipated,
-              "energy_damping": res.e_damp, "rigid_body_imbalance": backbone.drift,
-              "highest_harmonic_energy": highest, "normal_force_ratio_min": n_min, "lifting_pairs": lifting}
-    attrs = {"kappa": np.asarray(static.attrs["kappa"], dtype=float), "n_harmonics": cfg["n_harmonics"],
-             "n_time_samples": cfg["n_time_samples"], "friction_law": cfg["friction_law"],
-             "structural_damping_ratio": cfg["structural_damping_ratio"],
+    H0, H_max = cfg["n_harmonics"], max_harmonics(cfg)
+    backbone, contacts, _, omega_stuck = solve_backbone(reduced, static, config, target_hz, alpha, H0,
+                                                        cfg["n_time_samples"], structure_harmonics=H_max)
+    adaptive = adapt_harmonics(backbone, contacts, H_max, cfg["structural_damping_ratio"],
+                               tol=cfg.get("continuation_tolerance", 1e-8))
+    out = adaptive.values
+    warn_truncation(out["highest_harmonic_energy"], alpha)
+    warn_separation(out["lifting_pairs"], alpha, int(adaptive.n_harmonics.max()))
+    values = {"omega0": normalised_frequency(out["omega"], omega_stuck_default), "frequency": out["frequency"],
+              "zeta": out["zeta"], "gamma": out["gamma"], "phi": out["phi"], "q_res_z": out["q_res_peak"],
+              "q_res_z_h1": out["q_res_h1"], "energy_dissipated": out["energy_dissipated"],
+              "energy_damping": out["e_damp"], "rigid_body_imbalance": out["drift"],
+              "highest_harmonic_energy": out["highest_harmonic_energy"],
+              "normal_force_ratio_min": out["normal_force_ratio_min"], "lifting_pairs": out["lifting_pairs"],
+              "n_harmonics": adaptive.n_harmonics.astype(float)}
+    attrs = {"kappa": np.asarray(static.attrs["kappa"], dtype=float), "n_harmonics": H0,
+             "max_harmonics": H_max, "n_time_samples": cfg["n_time_samples"],
+             "friction_law": cfg["friction_law"], "structural_damping_ratio": cfg["structural_damping_ratio"],
              "omega_stuck": omega_stuck, "omega_stuck_default": omega_stuck_default,
+             "harmonics_resolved": adaptive.resolved, "harmonics_failed": "; ".join(adaptive.notes),
              "wall_time_s": time.perf_counter() - start}
-    return dnnm_dataset(alpha, contacts.npairs, values, res.status, attrs)
+    return dnnm_dataset(alpha, contacts.npairs, values, out["status"], attrs)
+
+
+def max_harmonics(dnnm_cfg: dict) -> int:
+    """The largest truncation of the adaptive harmonics, ``dnnm.max_harmonics`` (default: the base
+    ``dnnm.n_harmonics``, no adaptation)."""
+    return int(dnnm_cfg.get("max_harmonics", dnnm_cfg["n_harmonics"]))
 
 
 #: The variables of dnnm.nc besides ``status``: name -> (dims, units, long_name). The one declaration
@@ -133,6 +154,9 @@ DNNM_VARIABLES = {
         "smallest unclipped normal force over the period relative to its preload, over the preloaded pairs "
         "(separation indicator: <= 0 where a pair lifts off)"),
     "lifting_pairs": ("amplitude", "1", "number of preloaded pairs that lift off during part of the period"),
+    "n_harmonics": ("amplitude", "1",
+                    "harmonics H of the point's solution (dnnm.n_harmonics, raised point by point up to "
+                    "dnnm.max_harmonics where its truncation or separation indicator asks for it)"),
 }
 STATUS_MEANING = ("0 converged, 1 no convergence, 2 not reached, 3 converged with the ring's mean "
                   "rigid-body equilibrium unbalanced (ratcheting), 4 budget, 99 the geometry's chain failed "

@@ -23,7 +23,7 @@ def chain(small_config):
     model = build_model(build_sector(cfg, (0.0, 0.0, 0.0)), cfg)
     result, prob = solve_static(model, cfg)
     static = static_dataset(model, result, prob, (0.0, 0.0, 0.0), cfg["operation"]["speed_rpm"])
-    rs = reduce_sector(model, cfg["operation"]["engine_order"], n_harmonics=1, n_fi=20, n_if=10)
+    rs = reduce_sector(model, cfg["operation"]["engine_order"], n_harmonics=3, n_fi=20, n_if=10)
     reduced = reduced_dataset(rs, (0.0, 0.0, 0.0), [modal_basis(rh, rs.B, rs.response_index)
                                                     for rh in rs.harmonics])
     structure = structure_from_reduced(reduced, 1)
@@ -71,6 +71,38 @@ def test_failed_geometry_has_the_variables_of_a_solved_one_all_nan(chain):
     assert dict(ds.sizes) == dict(ok.sizes)
     assert all(np.all(np.isnan(ds[k].values)) for k in ds.data_vars if k != "status")
     assert np.all(ds.status.values == 99) and "static solve failed" in ds.attrs["reason"]
+
+
+def test_adaptive_harmonics_are_recorded_and_leave_quiet_points_bitwise(chain, monkeypatch):
+    """dnnm.nc records the H of every point (``n_harmonics``). With ``dnnm.max_harmonics`` = 3 and a
+    rule that raises every slipping point once (the coarse ring's grid has no lift-off, and ε_H is
+    undefined at H = 1), the other points are bitwise those of the fixed-H run and the raised ones
+    carry their H = 3 outputs: the EPMC energy identity (ζ_s = 0) holds at H = 3 and they differ
+    from H = 1."""
+    from ringdamper.nonlinear import adaptive
+
+    cfg, reduced, static, structure, contacts, target_hz = chain
+    cfg = {**cfg, "dnnm": {**cfg["dnnm"], "structural_damping_ratio": 0.0}}
+    w_stuck = target_stuck_frequency(structure, contacts, target_hz)
+    fixed = run_dnnm(reduced, static, cfg, target_hz, w_stuck)
+    monkeypatch.setattr(adaptive, "needs_more_harmonics",
+                        lambda point, previous, tol: previous is None and point["zeta"] > 1e-6)
+    adaptive_ds = run_dnnm(reduced, static, {**cfg, "dnnm": {**cfg["dnnm"], "max_harmonics": 3}},
+                           target_hz, w_stuck)
+    check_contract(adaptive_ds)
+    H = adaptive_ds.n_harmonics.values
+    assert adaptive_ds.n_harmonics.attrs["units"] == "1"
+    assert np.all(fixed.n_harmonics.values == 1)
+    assert adaptive_ds.attrs["max_harmonics"] == 3 and adaptive_ds.attrs["n_harmonics"] == 1
+    raised = fixed.zeta.values > 1e-6
+    assert raised.sum() >= 2 and adaptive_ds.attrs["harmonics_resolved"] == raised.sum()
+    np.testing.assert_array_equal(H, np.where(raised, 3.0, 1.0))
+    for k in ("zeta", "gamma", "q_res_z", "omega0", "energy_dissipated", "lifting_pairs", "status"):
+        np.testing.assert_array_equal(adaptive_ds[k].values[~raised], fixed[k].values[~raised], err_msg=k)
+    e_d = adaptive_ds.energy_dissipated.values[raised].sum(axis=1)
+    np.testing.assert_allclose(adaptive_ds.energy_damping.values[raised], e_d, rtol=1e-6)
+    assert np.all(adaptive_ds.highest_harmonic_energy.values[raised] > 0)      # defined at H = 3
+    assert not np.allclose(adaptive_ds.gamma.values[raised], fixed.gamma.values[raised], rtol=1e-6)
 
 
 def _stuck_mode_of(chain):

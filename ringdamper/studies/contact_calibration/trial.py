@@ -74,7 +74,7 @@ def run_trial(ring: DefaultRing, contact: dict, H: int, alpha):
     t0 = time.perf_counter()
     cfg = copy.deepcopy(ring.config)
     cfg["contact"] = dict(contact)
-    cfg["dnnm"].update(n_harmonics=int(H), amplitude_min=alpha[0], amplitude_max=alpha[1],
+    cfg["dnnm"].update(n_harmonics=int(H), max_harmonics=int(H), amplitude_min=alpha[0], amplitude_max=alpha[1],
                        n_amplitudes=int(alpha[2]))
     static = ring.static(cfg["contact"])
     w_stuck = default_normalisation(ring.reduced, static, cfg, ring.target_hz)["omega_stuck_default_rad_s"]

@@ -61,7 +61,8 @@ def parse_value(spec: dict, label: str):
 
 def case_config(config: dict, dial: str, label: str) -> dict:
     """Copy of ``config`` with dial ``dial`` set to the value ``label``. The reduction keeps at least
-    the harmonics the dNNM asks for (reduction.n_harmonics >= dnnm.n_harmonics)."""
+    the harmonics the dNNM asks for (reduction.n_harmonics >= dnnm.n_harmonics). A case of the dial
+    ``dnnm.n_harmonics`` is at that H throughout (``dnnm.max_harmonics`` = H: no adaptive truncation)."""
     if dial == DEFAULT:
         return copy.deepcopy(config)
     known = dials(config["fidelity"])
@@ -73,6 +74,8 @@ def case_config(config: dict, dial: str, label: str) -> dict:
     if section not in out or key not in out[section]:
         raise ValueError(f"fidelity.dials.{dial}.key = {spec['key']!r} is not a configuration key")
     out[section][key] = parse_value(spec, label)
+    if spec["key"] == "dnnm.n_harmonics":
+        out["dnnm"]["max_harmonics"] = out["dnnm"]["n_harmonics"]
     red = out["reduction"]
     red["n_harmonics"] = max(red["n_harmonics"], out["dnnm"]["n_harmonics"])
     return out

@@ -23,10 +23,12 @@ from .summary import case_summary
 
 
 def mesh_config(config: dict, factor: int) -> dict:
-    """The campaign configuration on the mesh refined by ``factor``, at the study's harmonics."""
+    """The campaign configuration on the mesh refined by ``factor``, at the study's harmonics (fixed:
+    no adaptive truncation)."""
     settings = config["fidelity"]["mesh_backbone"]
     out = refined(config, factor)          # a deep copy
     out["dnnm"]["n_harmonics"] = out["reduction"]["n_harmonics"] = settings["n_harmonics"]
+    out["dnnm"]["max_harmonics"] = settings["n_harmonics"]
     out["dnnm"]["n_time_samples"] = settings["n_time_samples"]
     return out
 

@@ -1,8 +1,10 @@
 """Run the repository's Snakefile in a subprocess, as a user would, on a configuration and a results
 folder of the test's own (shared by the workflow tests)."""
 import os
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import yaml
@@ -63,3 +65,18 @@ def dry_run_jobs(results, configfile, *args) -> dict:
             break
         jobs[fields[0]] = int(fields[1])
     return jobs
+
+
+def kill_when(results, configfile, targets, env, reached, what: str, timeout: float = 600):
+    """Run Snakemake towards ``targets`` in a process group of its own and SIGKILL the whole group as
+    soon as ``reached()`` holds (a user's kill -9 in the middle of a run); fail naming ``what`` if the
+    run ends first or ``timeout`` seconds pass."""
+    proc = subprocess.Popen(snakemake_command(results, configfile, *targets, cores=2), start_new_session=True,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+    deadline = time.monotonic() + timeout
+    while not reached():
+        assert proc.poll() is None, "the run ended before it could be killed"
+        assert time.monotonic() < deadline, f"{what} not reached in {timeout:g} s"
+        time.sleep(0.05)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()

@@ -3,17 +3,13 @@ its rings; a second run towards the dataset, with the static job of round 1's fi
 (``tests/faults``), is killed with SIGKILL once round 1's second ring has its dnnm.nc. Resumed
 (``--unlock``, ``--rerun-incomplete``, without the stall), it recomputes no finished geometry and no
 finished round, and ends with the rounds and the dataset of an uninterrupted run."""
-import os
-import signal
-import subprocess
-import time
 from typing import NamedTuple
 
 import pytest
 import yaml
 
 from tests.snakemake_run import SMALL_CONFIG as CONFIG
-from tests.snakemake_run import fault_environment, run_snakemake, snakemake_command
+from tests.snakemake_run import fault_environment, kill_when, run_snakemake
 from tools.compare_results import file_differences
 
 
@@ -39,17 +35,11 @@ def resumed(tmp_path_factory) -> Resumed:
     stalled, other = yaml.safe_load((results / "adaptive" / "round_1.yaml").read_text())["chosen"][:2]
     env = fault_environment({"stall_static": [stalled["kappa"]]}, work)
     target = results / "campaign" / "dataset.nc"
-    proc = subprocess.Popen(snakemake_command(results, CONFIG, target, cores=2), start_new_session=True,
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
     log = results / "logs" / "static" / f"{stalled['gid']}.log"
     done = results / "geometry" / other["gid"] / "dnnm.nc"
-    deadline = time.monotonic() + 600
-    while not (log.exists() and "stalled by the test" in log.read_text() and done.exists()):
-        assert proc.poll() is None, "the run ended before it could be killed"
-        assert time.monotonic() < deadline, "the stall and the round's other ring not reached in 600 s"
-        time.sleep(0.05)
-    os.killpg(proc.pid, signal.SIGKILL)
-    proc.wait()
+    kill_when(results, CONFIG, [target], env,
+              lambda: log.exists() and "stalled by the test" in log.read_text() and done.exists(),
+              "the stall and the round's other ring")
     at_kill = _outputs(results)
     finished = {p.parent.name for p in (results / "geometry").glob("*/dnnm.nc")}
     assert run_snakemake(results, CONFIG, "--unlock", target).returncode == 0

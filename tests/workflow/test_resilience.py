@@ -9,9 +9,6 @@ timestamp, a rerun recomputes dnnm.nc."""
 import os
 import re
 import shutil
-import signal
-import subprocess
-import time
 from typing import NamedTuple
 
 import pytest
@@ -19,7 +16,7 @@ import pytest
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.io import InputFileError, read_netcdf
 from tests.snakemake_run import SMALL_CONFIG as CONFIG
-from tests.snakemake_run import fault_environment, run_snakemake, snakemake_command
+from tests.snakemake_run import fault_environment, kill_when, run_snakemake
 from tools.compare_results import file_differences
 
 STAGES = ("static.nc", "reduced.nc", "dnnm.nc")
@@ -96,17 +93,11 @@ def resumed(tmp_path_factory, small_config) -> Resumed:
     kappa = make_samples(small_config["sampling"]).set_index("gid").loc[stalled, ["kappa1", "kappa2", "kappa3"]]
     env = fault_environment({"stall_static": [kappa.tolist()]}, work)
     targets = [results / "geometry" / gid / "dnnm.nc" for gid in gids]
-    proc = subprocess.Popen(snakemake_command(results, CONFIG, *targets, cores=2), start_new_session=True,
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
     log = results / "logs" / "static" / f"{stalled}.log"
-    deadline = time.monotonic() + 600
-    while not (log.exists() and "stalled by the test" in log.read_text()
-               and len(list((results / "benchmarks").rglob("*.tsv"))) >= 4):
-        assert proc.poll() is None, "the run ended before it could be killed"
-        assert time.monotonic() < deadline, "the stall and four finished jobs not reached in 600 s"
-        time.sleep(0.05)
-    os.killpg(proc.pid, signal.SIGKILL)
-    proc.wait()
+    kill_when(results, CONFIG, targets, env,
+              lambda: (log.exists() and "stalled by the test" in log.read_text()
+                       and len(list((results / "benchmarks").rglob("*.tsv"))) >= 4),
+              "the stall and four finished jobs")
     at_kill = _outputs(results)
     unreadable = _unreadable(at_kill)
     assert run_snakemake(results, CONFIG, "--unlock", *targets).returncode == 0

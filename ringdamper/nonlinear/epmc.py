@@ -261,13 +261,15 @@ def _stuck_points(problem: EPMCProblem, phi, omega0: float, alpha) -> list:
 
 def _joined(stuck: list, run, grid) -> NaturalResult:
     """The stuck points on the first grid values and the continuation ``run`` on the others, as one
-    :class:`NaturalResult` on ``grid``."""
+    :class:`NaturalResult` on ``grid``; the branch keeps the continuation's points above the last stuck
+    one only (it starts below it, at half the stick limit), so it stays ordered in α."""
     k = len(stuck)
     out = NaturalResult(grid, list(stuck) + [None] * (grid.size - k), np.zeros(grid.size, int),
                         [""] * grid.size, list(stuck))
     if run is not None:
         out.points[k:], out.status[k:], out.reason[k:] = run.points, run.status, run.reason
-        out.branch += run.branch
+        last = stuck[-1].s if stuck else -np.inf
+        out.branch += [p for p in run.branch if p.s > last]
     return out
 
 

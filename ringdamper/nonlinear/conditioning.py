@@ -28,6 +28,9 @@ as ``scale(z)`` scales the ``y`` columns, so ``D_r J D_c`` and κ are those of t
 """
 from __future__ import annotations
 
+import copy
+import dataclasses
+
 import numpy as np
 import scipy.linalg as sla
 from scipy.linalg.lapack import dgecon
@@ -76,18 +79,15 @@ def point_condition(backbone: Backbone, i: int) -> float:
 
 
 def backbone_conditions(backbone: Backbone) -> np.ndarray:
-    """κ of every usable point (status 0 or 3) of ``backbone``, NaN elsewhere. The leading points that
-    are scaled copies of the first (the stuck shortcut's) take its κ. The model's gauge state
-    (pinned and seen directions, gauge position), which the evaluations set, is restored."""
-    model = backbone.model
-    saved = (model.pinned, model.seen, model.eta_ref)
+    """κ of every usable point (status 0 or 3) of ``backbone``, NaN elsewhere. The points that are
+    scaled copies of the first (the stuck shortcut's) take its κ. The evaluations run on a shallow copy
+    of the model, so the gauge state they set (pinned and seen rigid-body directions) stays out of
+    ``backbone``, whose model later restarts may use."""
+    own = dataclasses.replace(backbone, model=copy.copy(backbone.model))
     kappa = np.full(backbone.alpha.size, np.nan)
-    try:
-        for i in np.flatnonzero(usable_status(np.asarray(backbone.status))):
-            copy = i > 0 and np.isfinite(kappa[0]) and _scaled_copy(backbone, 0, i)
-            kappa[i] = kappa[0] if copy else point_condition(backbone, i)
-    finally:
-        model.pinned, model.seen, model.eta_ref = saved
+    for i in np.flatnonzero(usable_status(np.asarray(backbone.status))):
+        shared = i > 0 and np.isfinite(kappa[0]) and _scaled_copy(backbone, 0, i)
+        kappa[i] = kappa[0] if shared else point_condition(own, i)
     return kappa
 
 

@@ -13,7 +13,7 @@ step), that is at most about ``κ ε`` with
 the 1-norm condition number of the equilibrated Jacobian. Two BLAS kernels (other summation orders,
 FMA or not) give two such roundings, so the two converged points differ by up to ``2 tol + 2 κ ε``
 scaled: with ``tol = 1e-8`` the first term is 2e-8, and the second exceeds 1e-6 when
-``κ > 1e-6 / (2 ε) ≈ 2.3e9`` (:data:`ILL_CONDITIONED`).
+``κ > 1e-6 / (2 ε) ≈ 2.25e9`` (:data:`ILL_CONDITIONED`).
 
 ``J`` is that of :meth:`EPMCProblem.fun` at the point (its pinned rigid-body directions set by
 :meth:`Backbone.state`), with the trivial unknowns (unit columns in the core rows: contact slots of

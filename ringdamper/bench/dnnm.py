@@ -48,8 +48,8 @@ def time_dnnm(config: dict, reduced, static, normalisation: dict, profile: bool 
 
 
 def _profile_figures(prof: cProfile.Profile, top: int = 12) -> dict:
-    """Calls and time of the LU factorisations and residual evaluations, and the top functions by
-    internal time (under the profiler's overhead)."""
+    """Calls and time of the LU factorisations, residual evaluations and the condition numbers of the
+    converged points' Jacobians, and the top functions by internal time (under the profiler's overhead)."""
     stats = pstats.Stats(prof, stream=io.StringIO())
     rows = {f"{path.rsplit('/', 1)[-1]}:{name}": (cc, tt, ct)
             for (path, _, name), (cc, _, tt, ct, _) in stats.stats.items()}
@@ -60,6 +60,7 @@ def _profile_figures(prof: cProfile.Profile, top: int = 12) -> dict:
     ranked = sorted(rows.items(), key=lambda kv: -kv[1][1])[:top]
     return {"lu_factor": calls("_decomp_lu.py:lu_factor"), "evaluate": calls("condensed.py:evaluate"),
             "contact_aft": calls("friction.py:contact_aft"),
+            "conditioning": calls("conditioning.py:backbone_conditions"),
             "top": [{"function": k, "calls": v[0], "internal_s": v[1]} for k, v in ranked]}
 
 

@@ -27,9 +27,10 @@ STATUS_NAMES = {int(s): s.name.lower().replace("_", " ") for s in Status} | {CHA
 
 # dnnm.nc scalars kept in the dataset (optional ones are NaN where a file lacks them)
 SCALARS = ("omega0", "frequency", "zeta", "gamma", "phi", "q_res_z", "q_res_z_h1", "rigid_body_imbalance",
-           "highest_harmonic_energy", "normal_force_ratio_min", "lifting_pairs", "n_harmonics")
+           "highest_harmonic_energy", "normal_force_ratio_min", "lifting_pairs", "n_harmonics",
+           "jacobian_condition", "ill_conditioned")
 OPTIONAL = ("rigid_body_imbalance", "q_res_z_h1", "highest_harmonic_energy", "normal_force_ratio_min",
-            "lifting_pairs", "n_harmonics")
+            "lifting_pairs", "n_harmonics", "jacobian_condition", "ill_conditioned")
 # the outputs the surrogates model and that must be finite at a usable point
 SURROGATE_OUTPUTS = ("q_res_z", "omega0", "zeta", "gamma")
 

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ringdamper.nonlinear.conditioning import backbone_conditions
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import Backbone, continue_point, resolve_point
 from ringdamper.nonlinear.friction import FrictionContacts
@@ -43,7 +44,7 @@ RAISE_MAX_ITER = 8
 #: the outputs of a backbone point, per amplitude (arrays on the first axis)
 OUTPUTS = ("omega", "frequency", "zeta", "gamma", "phi", "q_res_peak", "q_res_h1", "energy_dissipated",
            "e_damp", "drift", "highest_harmonic_energy", "normal_force_ratio_min", "lifting_pairs",
-           "status")
+           "jacobian_condition", "status")
 
 
 @dataclass
@@ -61,7 +62,8 @@ class AdaptiveResult:
 
 def backbone_outputs(backbone: Backbone, contacts: FrictionContacts, zeta_s: float) -> dict:
     """The :data:`OUTPUTS` of every point of ``backbone``: its E-EBM, drift, truncation and
-    separation indicators and status."""
+    separation indicators, the condition number of its Newton Jacobian
+    (:func:`ringdamper.nonlinear.conditioning.backbone_conditions`) and status."""
     res = eebm(backbone, zeta_s=zeta_s)
     n_min, lifting = separation_indicators(backbone, contacts, usable_status(res.status))
     return {"omega": res.omega, "frequency": res.frequency, "zeta": res.zeta, "gamma": res.gamma,
@@ -69,7 +71,8 @@ def backbone_outputs(backbone: Backbone, contacts: FrictionContacts, zeta_s: flo
             "energy_dissipated": res.energy_dissipated, "e_damp": res.e_damp, "drift": backbone.drift,
             "highest_harmonic_energy": highest_harmonic_fraction(backbone.model.modal, backbone.eta,
                                                                  backbone.omega),
-            "normal_force_ratio_min": n_min, "lifting_pairs": lifting, "status": np.asarray(res.status)}
+            "normal_force_ratio_min": n_min, "lifting_pairs": lifting,
+            "jacobian_condition": backbone_conditions(backbone), "status": np.asarray(res.status)}
 
 
 def relative_change(new: dict, old: dict) -> float:

@@ -17,6 +17,7 @@ import xarray as xr
 
 from ringdamper.io import declared_dataset, nan_values, variable
 from ringdamper.nonlinear.adaptive import adapt_harmonics
+from ringdamper.nonlinear.conditioning import ILL_CONDITIONED
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc
 from ringdamper.nonlinear.friction import FrictionContacts
@@ -113,7 +114,8 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
               "energy_damping": out["e_damp"], "rigid_body_imbalance": out["drift"],
               "highest_harmonic_energy": out["highest_harmonic_energy"],
               "normal_force_ratio_min": out["normal_force_ratio_min"], "lifting_pairs": out["lifting_pairs"],
-              "n_harmonics": adaptive.n_harmonics.astype(float)}
+              "n_harmonics": adaptive.n_harmonics.astype(float), "jacobian_condition": out["jacobian_condition"],
+              "ill_conditioned": (out["jacobian_condition"] > ILL_CONDITIONED).astype(np.int8)}
     attrs = {"kappa": np.asarray(static.attrs["kappa"], dtype=float), "n_harmonics": H0,
              "max_harmonics": H_max, "n_time_samples": cfg["n_time_samples"],
              "friction_law": cfg["friction_law"], "structural_damping_ratio": cfg["structural_damping_ratio"],
@@ -157,6 +159,14 @@ DNNM_VARIABLES = {
     "n_harmonics": ("amplitude", "1",
                     "harmonics H of the point's solution (dnnm.n_harmonics, raised point by point up to "
                     "dnnm.max_harmonics where its truncation or separation indicator asks for it)"),
+    "jacobian_condition": (
+        "amplitude", "1",
+        "1-norm condition number (LAPACK estimate) of the converged point's Newton Jacobian, unknowns scaled "
+        "as Newton's convergence test and rows by their largest entry (NaN where not converged)"),
+    "ill_conditioned": (
+        "amplitude", "1",
+        f"1 where jacobian_condition > {ILL_CONDITIONED:.3g} = 1e-6 / (2 eps): rounding (the BLAS kernel) may move "
+        "the point by more than 1e-6 relative"),
 }
 STATUS_MEANING = ("0 converged, 1 no convergence, 2 not reached, 3 converged with the ring's mean "
                   "rigid-body equilibrium unbalanced (ratcheting), 4 budget, 99 the geometry's chain failed "

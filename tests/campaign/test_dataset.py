@@ -39,6 +39,7 @@ def test_aggregation_keeps_every_geometry_with_units_and_flags(campaign):
     assert list(ds.geometry.values) == list(samples.gid)
     assert np.allclose(ds.kappa1, samples.kappa1) and list(ds.split.values) == list(samples.split)
     assert ds.q_res_z.attrs["units"] == "m" and ds.gamma.attrs["units"] == "N"
+    assert ds.jacobian_condition.attrs["units"] == "1" and "1e-6" in ds.ill_conditioned.attrs["long_name"]
     np.testing.assert_allclose(ds.zeta.sel(geometry="t001"),
                                backbone(samples.iloc[1, 1:4].to_numpy(float), ALPHA)["zeta"], rtol=1e-14)
     assert np.all(ds.status.sel(geometry="t003") == CHAIN_FAILED)

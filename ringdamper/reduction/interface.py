@@ -48,7 +48,7 @@ def face_basis(cm: CyclicModel, n_if: int) -> tuple[np.ndarray, np.ndarray, np.n
         raise ValueError(f"n_if = {n_if} outside [0, {n_l}] (face DoFs)")
     p, f = slice(0, n_p), slice(n_p, n_p + n_l)
     K_ll, M_ll, K_lp = cm.K[f, f], cm.M[f, f], cm.K[f, p]
-    S = -sla.solve(K_ll, K_lp, assume_a="her")
+    S = -sla.solve(K_ll, K_lp, assume_a="pos")   # K_ll: face stiffness with p held, definite
     if n_if:
         w2, phi = sla.eigh(K_ll, M_ll, subset_by_index=(0, n_if - 1))
     else:

@@ -106,6 +106,8 @@ class SupernodalLDL:
         if B.ndim != 2 or B.shape[0] != self.shape[0]:
             raise ValueError(f"B must be ({self.shape[0]}, k), got {B.shape}")
         X = np.empty_like(B, order="C")
+        if B.shape[1] == 0:
+            return X
         X[self.perm] = B                  # P B (row i of B goes to position perm[i])
         # X is C-ordered: X[c0:c1].T is a Fortran-ordered view, which BLAS updates in place
         for s in self.supernodes:         # L y = P B

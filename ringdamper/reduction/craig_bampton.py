@@ -9,9 +9,11 @@ fixed-interface modes K_ii Phi = M_ii Phi Lambda (mass-normalised):
     K_cb = [[K_bb + K_bi Psi, 0], [0, Lambda]],
     M_cb = [[M_bb + M_bi Psi + Psi^T M_ib + Psi^T M_ii Psi, (M_bi + Psi^T M_ii) Phi], [., I]].
 
-K_ii (positive definite: the boundary and the bore are held) is factorised once as P K_ii Pᵀ = L D Lᵀ
-(``ringdamper.fem.supernodal``); the same factors give the constraint modes, all right-hand sides
-in one level-3 BLAS block solve, and drive the shift-invert Lanczos of the fixed-interface modes.
+K_ii (positive definite: the boundary and the bore are held) is block diagonal over the connected
+blocks of the interior (the ring and the blisk, which only contact couples); each block is factorised
+once as P K Pᵀ = L D Lᵀ (``ringdamper.fem.supernodal``), and the same factors give its constraint
+modes, all its right-hand sides in one level-3 BLAS block solve, and drive the shift-invert Lanczos
+of the fixed-interface modes.
 The matrices stay real and symmetric: the cyclic constraint (step 2) comes after, so one
 factorisation serves every harmonic. Static condensation is exact: for loads on the retained DoFs,
 K_cb reproduces the full model's static response there (tested).

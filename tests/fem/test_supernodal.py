@@ -51,3 +51,7 @@ def test_indefinite_matrix_is_refused():
 def test_block_shape_is_checked(spd):
     with pytest.raises(ValueError, match=r"B must be \(1512, k\)"):
         SupernodalLDL(spd).solve(np.ones(spd.shape[0]))
+
+
+def test_no_right_hand_side(spd):
+    assert SupernodalLDL(spd).solve(np.zeros((spd.shape[0], 0))).shape == (spd.shape[0], 0)

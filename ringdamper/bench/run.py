@@ -186,6 +186,13 @@ def _mesh_convergence(config: dict) -> dict:
     return {"levels": mesh_study(config, config["studies"]["mesh_convergence"]["levels"])}
 
 
+def _reduction(config: dict) -> dict:
+    """CPU seconds per part of the reduction stage (rule ``reduced``) on two rings (ringdamper.bench.reduction)."""
+    from ringdamper.bench.reduction import run
+
+    return run(config)
+
+
 def _dnnm(config: dict) -> dict:
     """dNNM CPU time of the default ring (and its profile) and of the hard rings (ringdamper.bench.dnnm)."""
     from ringdamper.bench.dnnm import run
@@ -201,7 +208,8 @@ def _surrogate(config: dict) -> dict:
 
 
 BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "geometry_chain": _geometry_chain,
-              "dnnm": _dnnm, "dynamics_synthetic": _dynamics_synthetic, "static_synthetic": _static_synthetic,
+              "reduction": _reduction, "dnnm": _dnnm, "dynamics_synthetic": _dynamics_synthetic,
+              "static_synthetic": _static_synthetic,
               "mesh_convergence": _mesh_convergence, "surrogate": _surrogate}
 
 

@@ -13,10 +13,10 @@ from ringdamper.fem.contact_law import stuck_pair_stiffness
 from ringdamper.fem.cyclic import cyclic_transform, project
 from ringdamper.fem.linalg import solve
 from ringdamper.fem.model import build_model, contact_stiffness
-from ringdamper.geometry.sector import build_sector
+from ringdamper.geometry.sector import BODY_RING, build_sector
 from ringdamper.modal.analysis import cyclic_modes
 from ringdamper.reduction import eigenfrequencies, reduce_sector, stuck_frequencies, stuck_matrices
-from ringdamper.reduction.craig_bampton import craig_bampton
+from ringdamper.reduction.craig_bampton import craig_bampton, interior_blocks
 from ringdamper.reduction.partition import partition
 from ringdamper.reduction.stage import reduction_sizes
 
@@ -93,6 +93,30 @@ def test_craig_bampton_static_condensation_is_exact(small_quadratic):
     K_red = cb.K[:nb, :nb] + Kc[b][:, b].toarray()
     u_red = np.linalg.solve(K_red, np.eye(nb))
     assert np.linalg.norm(u_red - u_full) / np.linalg.norm(u_full) < 1e-8
+
+
+def test_constraint_modes_by_interior_blocks_match_the_dense_formulas(small_quadratic):
+    """The interior splits into the ring and the blisk (no stiffness couples them without contact);
+    Psi and K_cb, M_cb assembled block by block equal the dense formulas of the whole interior."""
+    model, *_ = small_quadratic
+    part = partition(model)
+    cb = craig_bampton(model.K, model.M, part.boundary, part.interior, 12, keep_modes=True)
+    K, M = model.K.tocsr(), model.M.tocsr()
+    i, b = part.interior, part.boundary
+    Kii, Kib, Mii, Mib = (A[i][:, j].toarray() for A in (K, M) for j in (i, b))
+    psi = -np.linalg.solve(Kii, Kib)
+    assert np.abs(cb.constraint_modes - psi).max() <= 1e-10 * np.abs(psi).max()
+    nb = len(b)
+    K_bb = K[b][:, b].toarray() + Kib.T @ psi
+    M_bb = M[b][:, b].toarray() + Mib.T @ psi + psi.T @ Mib + psi.T @ Mii @ psi
+    M_bf = (Mib.T + psi.T @ Mii) @ cb.fixed_interface_modes
+    assert np.abs(cb.K[:nb, :nb] - K_bb).max() <= 1e-10 * np.abs(K_bb).max()
+    assert np.abs(cb.M[:nb, :nb] - M_bb).max() <= 1e-10 * np.abs(M_bb).max()
+    assert np.abs(cb.M[:nb, nb:] - M_bf).max() <= 1e-10 * np.abs(M_bf).max()
+    ring = np.repeat(model.node_body == BODY_RING, 3)[i]
+    blocks = interior_blocks(*(A.tocsr() for A in (K[i][:, i], M[i][:, i], K[i][:, b])))
+    assert sorted(ring[blk.rows].all() for blk in blocks) == [False, True]
+    assert all(ring[blk.rows].all() or not ring[blk.rows].any() for blk in blocks)
 
 
 @pytest.mark.parametrize("h", [0, 1, 2])

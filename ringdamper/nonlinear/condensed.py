@@ -28,7 +28,11 @@ growing amplitude pushes exactly on its stick/slip kink at every accepted point;
 cycles between the two sides.)
 
 Jacobian: ``∂r/∂y = I + A_h K_c`` with ``A_h = [Ψ_C diag(1/z_C) Ψ_Cᴴ ; Ψ_Sᴴ]`` per harmonic and
-``K_c`` the AFT Jacobian (block-diagonal over pairs), plus the explicit-mode blocks.
+``K_c`` the AFT Jacobian (block-diagonal over pairs), plus the explicit-mode blocks. It is an
+operator (:class:`CoreJacobian`): its product with a vector is the residual's linearisation,
+``δr_{d,h} = δD_h + Ψ_C diag(1/z_C) Ψ_Cᴴ δΛ_h − Ψ_S δη_S``, ``δr_{η,h} = z_S δη_S + Ψ_Sᴴ δΛ_h``,
+``δΛ = K_c δd`` (``O(p·m)`` per harmonic), and the matrix (``O(p²·m)``: the receptances ``G_h``) is
+formed only for a factorisation.
 
 Gauge (zero modes of harmonic 0, e.g. the ring's rotation and axial translation): their rows are
 the rigid-body equilibria ``Ψ_Zᴴ Λ_0 = f_Z``. The mean position ``η_Z`` is determined only while
@@ -69,14 +73,15 @@ from ringdamper.nonlinear.structure import Structure
 
 @dataclass
 class CoreEval:
-    """One evaluation: residual ``r``, Jacobian ``J`` (core × core) and its columns for ω and ξ,
+    """One evaluation: residual ``r``, Jacobian ``J`` (core × core, a :class:`CoreJacobian`
+    operator) and its columns for ω and ξ,
     the trivial unknowns (d slots of pairs with zero contact Jacobian: their columns are unit
     vectors), contact displacement/force slots ``d``, ``lam`` (C × p), modal coordinates ``eta[h]``
     of every mode, the AFT result, the gauge drift (equilibria dropped for the gauge) and the
     gauged directions ``gauge`` (orthonormal columns in the zero-mode space, one per drift)."""
 
     r: np.ndarray
-    J: np.ndarray | None
+    J: "CoreJacobian | None"
     dr_domega: np.ndarray | None
     dr_dxi: np.ndarray | None
     trivial: np.ndarray | None
@@ -88,11 +93,11 @@ class CoreEval:
     gauge: np.ndarray
 
     def take_jacobian(self) -> np.ndarray | None:
-        """The Jacobian, released from this evaluation: evaluations are kept as the payload of
-        every accepted continuation point, and a dense n_core² Jacobian each (18 MB on a real
-        ring at H = 3) added up to gigabytes."""
+        """The Jacobian as a dense matrix, released from this evaluation: evaluations are kept
+        as the payload of every accepted continuation point, and a dense n_core² Jacobian each
+        (18 MB on a real ring at H = 3) would add up to gigabytes."""
         J, self.J = self.J, None
-        return J
+        return None if J is None else J.toarray()
 
 
 class CondensedHBM:
@@ -139,6 +144,8 @@ class CondensedHBM:
         self.PsiH = [m.Psi.conj().T.copy() for m in self.modal]                 # Ψ_hᴴ
         self.PsiC = [m.Psi[:, Cs] for m, Cs in zip(self.modal, self.Cset)]     # condensed
         self.PsiS = [m.Psi[:, S] for m, S in zip(self.modal, self.S)]          # explicit
+        self.PsiCH = [P.conj().T.copy() for P in self.PsiC]                    # Ψ_Cᴴ
+        self.PsiSH = [P.conj().T.copy() for P in self.PsiS]                    # Ψ_Sᴴ
         self.zero_modes = np.flatnonzero(self.modal[0].zero[self.S[0]])    # positions within S_0
         if self.zero_modes.size:
             PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]
@@ -227,6 +234,8 @@ class CondensedHBM:
 
     # ---- evaluation -----------------------------------------------------------------------
     def evaluate(self, y: np.ndarray, omega: float, xi: float, jacobian: bool = True) -> CoreEval:
+        """Residual at ``(y, ω, ξ)`` and, if ``jacobian``, its linearisation: ``J`` as an operator
+        (:class:`CoreJacobian`) and the ω and ξ columns."""
         H, C, p, npairs = self.H, self.C, self.p, self.npairs
         d = y[:self.n_d].reshape(C, p)
         aft = contact_aft(self.contacts, self.fourier, d.reshape(C, npairs, 3).transpose(1, 2, 0),
@@ -235,16 +244,11 @@ class CondensedHBM:
         lam[0] -= self.static
         D, Lam = to_complex(d, H), to_complex(lam, H)
         r = np.empty(self.n_core)
-        J = np.zeros((self.n_core, self.n_core)) if jacobian else None
         dr_dw = np.zeros(self.n_core) if jacobian else None
         dr_dx = np.zeros(self.n_core) if jacobian else None
-        if jacobian:
-            kc = aft.jac
-            active = np.any(kc.reshape(npairs, -1) != 0, axis=1)
-            J[np.arange(self.n_d), np.arange(self.n_d)] = 1.0
         etas = []
         for h in range(H + 1):
-            m, S, Cs, sl = self.modal[h], self.S[h], self.Cset[h], self.eta_slices[h]
+            m, S, Cs = self.modal[h], self.S[h], self.Cset[h]
             z, dz_dw, dz_dx = self._modal_impedance(h, omega, xi)
             load = (self.gamma * m.f if self.forced else 0.0) - self.PsiH[h] @ Lam[h]
             eta_S = self.eta_explicit(y, h)
@@ -252,48 +256,29 @@ class CondensedHBM:
             eta[Cs] = load[Cs] / z[Cs]
             eta[S] = eta_S
             etas.append(eta)
-            rd = D[h] - m.Psi @ eta
-            re = z[S] * eta_S - load[S]
-            rows = self._rows(h)
-            if h == 0:
-                r[rows], r[sl] = rd.real, re.real
-            else:
-                r[rows], r[sl] = real_vector(rd), real_vector(re)
-            if not jacobian:
-                continue
-            PsiC, PsiS = self.PsiC[h], self.PsiS[h]
-            rhoC = 1.0 / z[Cs]
-            G = (PsiC * rhoC) @ PsiC.conj().T
-            A = np.vstack([G, PsiS.conj().T])                      # response to δΛ_h
-            Areal = A.real if h == 0 else _real_rows(A, p)
-            KA = _apply_contact_jacobian(Areal, kc, self.fourier.slots(h), active, p)
-            nr = rows.stop - rows.start
-            J[rows, :self.n_d] += KA[:nr]
-            J[sl, :self.n_d] += KA[nr:]
-            if h == 0:
-                J[rows, sl] = -PsiS.real
-                J[sl, sl] = np.diag(z[S].real)
-            else:
-                J[rows, sl] = -real_block(PsiS)
-                J[sl, sl] = real_block(np.diag(z[S]))
-            # ω and ξ derivatives: only z depends on them
-            de_w = -(eta[Cs] / z[Cs]) * dz_dw[Cs]
-            de_x = -(eta[Cs] / z[Cs]) * dz_dx[Cs]
-            gw, gx = -PsiC @ de_w, -PsiC @ de_x
-            ew, ex = dz_dw[S] * eta_S, dz_dx[S] * eta_S
-            if h == 0:
-                dr_dw[rows], dr_dw[sl] = gw.real, ew.real
-                dr_dx[rows], dr_dx[sl] = gx.real, ex.real
-            else:
-                dr_dw[rows], dr_dw[sl] = real_vector(gw), real_vector(ew)
-                dr_dx[rows], dr_dx[sl] = real_vector(gx), real_vector(ex)
-        trivial = None
+            self._put(r, h, D[h] - m.Psi @ eta, z[S] * eta_S - load[S])
+            if jacobian:                           # ω and ξ derivatives: only z depends on them
+                for vec, dz in ((dr_dw, dz_dw), (dr_dx, dz_dx)):
+                    self._put(vec, h, self.PsiC[h] @ ((eta[Cs] / z[Cs]) * dz[Cs]), dz[S] * eta_S)
+        J = trivial = None
         if jacobian:
+            active = np.any(aft.jac.reshape(npairs, -1) != 0, axis=1)
             trivial = np.zeros(self.n_core, bool)
             trivial[:self.n_d] = np.tile(np.repeat(~active, 3), C)
-        drift, gauge = self._gauge(r, J, dr_dw, dr_dx, y, aft.jac)
+        drift, gauge, rotation = self._gauge(r, (dr_dw, dr_dx) if jacobian else (), y, aft.jac)
+        if jacobian:
+            J = CoreJacobian(self, aft.jac, active, omega, xi, rotation)
         return CoreEval(r=r, J=J, dr_domega=dr_dw, dr_dxi=dr_dx, trivial=trivial, d=d, lam=lam,
                         eta=etas, aft=aft, drift=drift, gauge=gauge)
+
+    def _put(self, out: np.ndarray, h: int, rd: np.ndarray, re: np.ndarray) -> None:
+        """Write harmonic ``h``'s complex contact rows ``rd`` and explicit-mode rows ``re`` into the
+        real vector ``out`` (real part only for h = 0, ``(a; b)`` slots otherwise)."""
+        rows, sl = self._rows(h), self.eta_slices[h]
+        if h == 0:
+            out[rows], out[sl] = rd.real, re.real
+        else:
+            out[rows], out[sl] = real_vector(rd), real_vector(re)
 
     def modal_norm2(self, ev: CoreEval, omega: float, xi: float, h: int = 1):
         """``Σ_r |η_{h,r}|² = Q_hᴴ M_h Q_h`` and its gradient w.r.t. ``y``, ω and ξ."""
@@ -326,14 +311,15 @@ class CondensedHBM:
         sl = self.fourier.slots(h)
         return slice(sl.start * self.p, sl.stop * self.p)
 
-    def _gauge(self, r, J, dr_dw, dr_dx, y, kc):
+    def _gauge(self, r, columns, y, kc):
         """Replace the rigid-body equilibria along the pinned directions and along directions not
-        held by any contact by the gauge ``η_Z = η_ref`` (module docstring); return the dropped
-        equilibria (drift) and the gauged directions."""
+        held by any contact by the gauge ``η_Z = η_ref`` (module docstring), in ``r`` and in the
+        Jacobian ``columns`` (ω, ξ); return the dropped equilibria (drift), the gauged directions
+        and the :class:`GaugeRotation` the Jacobian's rows take (None if nothing is gauged)."""
         nz = self.zero_modes.size
         pinned = self.pinned
         if nz == 0:
-            return np.zeros(0), pinned
+            return np.zeros(0), pinned, None
         rows = self.eta_slices[0].start + self.zero_modes     # η_Z unknowns and their equilibria
         free = _complement(pinned)
         new = np.zeros((nz, 0))
@@ -350,23 +336,99 @@ class CondensedHBM:
             self.seen = _span(self.seen, new)
         gauge = np.hstack([pinned, new])
         if not gauge.shape[1]:
-            return np.zeros(0), gauge
-        V = np.hstack([free, gauge])                                    # held | gauged
-        g = slice(free.shape[1], nz)
-        rot = V.T @ r[rows]
-        drift = rot[g].copy()
-        rot[g] = gauge.T @ (y[rows] - self.eta_ref)
+            return np.zeros(0), gauge, None
+        rotation = GaugeRotation(rows, np.hstack([free, gauge]), slice(free.shape[1], nz), gauge)
+        rot = rotation.V.T @ r[rows]
+        drift = rot[rotation.g].copy()
+        rot[rotation.g] = gauge.T @ (y[rows] - self.eta_ref)
         r[rows] = rot
-        if J is not None:
-            Jr = V.T @ J[rows]
-            Jr[g] = 0.0
-            Jr[g, rows] = gauge.T
-            J[rows] = Jr
-            for vec in (dr_dw, dr_dx):
-                v = V.T @ vec[rows]
-                v[g] = 0.0
-                vec[rows] = v
-        return drift, gauge
+        for vec in columns:
+            v = rotation.V.T @ vec[rows]
+            v[rotation.g] = 0.0
+            vec[rows] = v
+        return drift, gauge, rotation
+
+
+@dataclass
+class GaugeRotation:
+    """The rigid-body rows ``rows`` of the Jacobian rotated onto the basis ``V`` (held | gauged
+    directions), the gauged ones (``g``) replaced by the gauge ``gauge.T (η_Z − η_ref)``."""
+
+    rows: np.ndarray
+    V: np.ndarray
+    g: slice
+    gauge: np.ndarray
+
+    def apply(self, out: np.ndarray, v: np.ndarray | None = None) -> None:
+        """Rotate the rows of ``out`` (the Jacobian, or its product with ``v``) in place."""
+        rotated = self.V.T @ out[self.rows]
+        rotated[self.g] = 0.0
+        if v is None:
+            rotated[self.g, self.rows] = self.gauge.T
+        else:
+            rotated[self.g] = self.gauge.T @ v[self.rows]
+        out[self.rows] = rotated
+
+
+class CoreJacobian:
+    """``∂r/∂y`` of one evaluation (module docstring, *Jacobian*): ``I + A_h K_c`` per harmonic plus
+    the explicit-mode blocks, with the gauge rows, as an operator (:mod:`ringdamper.nonlinear.jacobian`).
+    :meth:`matvec` is the residual's linearisation applied to a vector (``O(p m)`` per harmonic, the
+    receptance ``G_h`` is never formed); :meth:`toarray` forms the matrix (``O(p² m)``) for a
+    factorisation."""
+
+    def __init__(self, model: "CondensedHBM", kc: np.ndarray, active: np.ndarray, omega: float,
+                 xi: float, rotation: GaugeRotation | None):
+        self.model, self.kc, self.active, self.rotation = model, kc, active, rotation
+        self.z = [model._modal_impedance(h, omega, xi)[0] for h in range(model.H + 1)]
+        self.shape = (model.n_core, model.n_core)
+
+    def matvec(self, v: np.ndarray) -> np.ndarray:
+        m = self.model
+        C, p, npairs = m.C, m.p, m.npairs
+        vd = v[:m.n_d].reshape(C, p)
+        dlam = np.zeros((npairs, 3 * C))
+        a = self.active
+        if np.any(a):
+            vq = vd.reshape(C, npairs, 3).transpose(1, 2, 0).reshape(npairs, 3 * C)[a]
+            dlam[a] = np.matmul(self.kc[a].reshape(-1, 3 * C, 3 * C), vq[..., None])[..., 0]
+        dLam = to_complex(dlam.reshape(npairs, 3, C).transpose(2, 0, 1).reshape(C, p), m.H)
+        dD = to_complex(vd, m.H)
+        out = np.empty(m.n_core)
+        for h in range(m.H + 1):
+            z, S, Cs = self.z[h], m.S[h], m.Cset[h]
+            deta_S = m.eta_explicit(v, h)
+            deta_C = -(m.PsiCH[h] @ dLam[h]) / z[Cs]
+            m._put(out, h, dD[h] - m.PsiC[h] @ deta_C - m.PsiS[h] @ deta_S,
+                   z[S] * deta_S + m.PsiSH[h] @ dLam[h])
+        if self.rotation is not None:
+            self.rotation.apply(out, v)
+        return out
+
+    def toarray(self) -> np.ndarray:
+        m = self.model
+        p, kc, active = m.p, self.kc, self.active
+        J = np.zeros(self.shape)
+        J[np.arange(m.n_d), np.arange(m.n_d)] = 1.0
+        for h in range(m.H + 1):
+            z, S, Cs, sl, rows = self.z[h], m.S[h], m.Cset[h], m.eta_slices[h], m._rows(h)
+            PsiC, PsiS = m.PsiC[h], m.PsiS[h]
+            G = (PsiC * (1.0 / z[Cs])) @ PsiC.conj().T
+            A = np.vstack([G, PsiS.conj().T])                      # response to δΛ_h
+            Areal = A.real if h == 0 else _real_rows(A, p)
+            KA = _apply_contact_jacobian(Areal, kc, m.fourier.slots(h), active, p)
+            nr = rows.stop - rows.start
+            J[rows, :m.n_d] += KA[:nr]
+            J[sl, :m.n_d] += KA[nr:]
+            if h == 0:
+                J[rows, sl] = -PsiS.real
+                J[sl, sl] = np.diag(z[S].real)
+            else:
+                J[rows, sl] = -real_block(PsiS)
+                J[sl, sl] = real_block(np.diag(z[S]))
+        if self.rotation is not None:
+            self.rotation.apply(J)
+        return J
 
 
 def _span(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -36,6 +36,7 @@ import scipy.linalg as sla
 from scipy.linalg.lapack import dgecon
 
 from ringdamper.nonlinear.epmc import Backbone, EPMCProblem
+from ringdamper.nonlinear.jacobian import dense
 from ringdamper.status import usable_status
 
 #: κ above which rounding alone may move a converged point by more than 1e-6 (relative, scaled
@@ -75,7 +76,7 @@ def point_condition(backbone: Backbone, i: int) -> float:
     problem = EPMCProblem(model, backbone.phase_index, backbone.drift_tol)
     z = backbone.state(i)
     _, J, trivial, _, _ = problem.fun(z, np.log(backbone.alpha[i]), True)
-    return equilibrated_condition(J, trivial, problem.scale(z))
+    return equilibrated_condition(dense(J), trivial, problem.scale(z))
 
 
 def backbone_conditions(backbone: Backbone) -> np.ndarray:

@@ -40,7 +40,8 @@ from typing import Any, Callable
 
 import numpy as np
 
-from ringdamper.nonlinear.newton import Factorization, NewtonResult, newton
+from ringdamper.nonlinear.jacobian import bordered
+from ringdamper.nonlinear.newton import NewtonResult, linear_solver, newton
 from ringdamper.status import Status
 
 # Weight, in the arc length of :func:`natural_then_arclength`, of the unknowns outside ``jump_mask``
@@ -177,7 +178,7 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
     mask = None if jump_mask is None else np.r_[jump_mask, True]
     root_n = np.sqrt(z0.size)
     z = res.z
-    fac, tangent = _natural_tangent(fun, dfun_ds, z, s)
+    fac, tangent = _natural_tangent(fun, dfun_ds, z, s, res.factorization, scale)
     out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
     gi = 0
     if s == grid[0]:
@@ -195,7 +196,7 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
                      factorization=fac)
         why = res.reason
         if res.converged:
-            fac_t, tangent_t = _natural_tangent(fun, dfun_ds, res.z, s_t)
+            fac_t, tangent_t = _natural_tangent(fun, dfun_ds, res.z, s_t, res.factorization, scale)
             geometry, fold = _natural_geometry(z, s, tangent, res.z, s_t, tangent_t,
                                                root_n * scale(z), mask)
             why = ("fold in s between the points" if fold else
@@ -231,10 +232,11 @@ def _natural_geometry(z0, s0, tangent0, z1, s1, tangent1, w, mask):
     return _step_geometry(t0, t1, chord, mask), t1[-1] <= 0
 
 
-def _natural_tangent(fun, dfun_ds, z, s):
-    """Factorised Jacobian at ``(z, s)`` and the tangent ``dz/ds = −J⁻¹ ∂r/∂s``."""
+def _natural_tangent(fun, dfun_ds, z, s, previous, scale):
+    """Solver of the Jacobian at ``(z, s)`` (:func:`ringdamper.nonlinear.newton.linear_solver`, on
+    the factorisation of the solver ``previous``) and the tangent ``dz/ds = −J⁻¹ ∂r/∂s``."""
     _, J, trivial, n_core, _ = fun(z, s, True)
-    fac = Factorization(J, trivial, n_core)
+    fac = linear_solver(J, trivial, n_core, previous, 1.0 / scale(z))
     return fac, fac.solve(-dfun_ds(z, s))
 
 
@@ -289,7 +291,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
     r0, J0, trivial0, n_core0, payload0 = fun(z0, True)
     if accept is not None:
         accept(z0, payload0)
-    last_fac, t = _tangent(J0, trivial0, n_core0, direction / scale, scale)
+    last_fac, t = _tangent(J0, trivial0, n_core0, direction / scale, scale, None)
     pts, tans, scales = [ContinuationPoint(0.0, z0, payload0, 0)], [t], [scale]
     z, s, ds = z0, 0.0, steps.initial
 
@@ -298,17 +300,17 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
         against the trusted tangent ``t``: ``(result, tangent, factorisation, turn, why)``."""
         zp, plane = z + ds * d * scale, d / scale
 
-        def bordered(zz, jac):
+        def on_plane(zz, jac):
             r, J, trivial, n_core, payload = fun(zz, jac)
-            Jb = np.vstack([J, plane]) if jac else None
+            Jb = bordered(J, rows=plane) if jac else None
             return np.r_[r, plane @ (zz - zp)], Jb, trivial, n_core, payload
 
-        res = newton(bordered, zp, lambda _: scale, tol, max_iter, factorization=fac)
+        res = newton(on_plane, zp, lambda _: scale, tol, max_iter, factorization=fac)
         if not res.converged:
             return res, None, None, 0.0, res.reason
         chord = (res.z - z) / scale
         _, J1, trivial1, n_core1, _ = fun(res.z, True)
-        fac1, t1 = _tangent(J1, trivial1, n_core1, chord, scale)
+        fac1, t1 = _tangent(J1, trivial1, n_core1, chord, scale, res.factorization)
         geometry = _step_geometry(t, t1, chord, jump_mask)
         why = _untrusted(geometry, max_angle, ds <= corner * steps.minimum)
         if not why and _angle(-t, chord) <= np.pi / 4:
@@ -352,7 +354,7 @@ def _turn_corner(step, fun, z, t, ds, largest, scale):
     ``largest``; each must pass :func:`arclength`'s tests (and not lead back along the incoming
     branch). Returns ``step``'s tuple, or None."""
     _, J, trivial, n_core, _ = fun(z + ds * t * scale, True)
-    fac, ahead = _tangent(J, trivial, n_core, t, scale)
+    fac, ahead = _tangent(J, trivial, n_core, t, scale, None)
     sizes = [ds * 4.0 ** k for k in range(int(np.log(largest / ds) / np.log(4.0)) + 1)]
     for size in sizes:
         for d in (ahead, -ahead):
@@ -362,12 +364,13 @@ def _turn_corner(step, fun, z, t, ds, largest, scale):
     return None
 
 
-def _tangent(J, trivial, n_core, direction_u, scale):
-    """Factorisation of ``J`` bordered by ``direction_u / scale`` and the unit tangent in scaled
+def _tangent(J, trivial, n_core, direction_u, scale, previous):
+    """Solver of ``J`` bordered by ``direction_u / scale`` (:func:`ringdamper.nonlinear.newton.linear_solver`,
+    on the factorisation of the solver ``previous``, if any) and the unit tangent in scaled
     variables: ``J (scale·t) = 0``, oriented along ``direction_u``."""
     e = np.zeros(J.shape[1])
     e[-1] = 1.0
-    fac = Factorization(np.vstack([J, direction_u / scale]), trivial, n_core)
+    fac = linear_solver(bordered(J, rows=direction_u / scale), trivial, n_core, previous, 1.0 / scale)
     return fac, _unit(fac.solve(e) / scale)
 
 
@@ -455,7 +458,7 @@ class NaturalThenArclength:
     def residual(self, x, jac):
         """``r(z, s)`` at ``x = [z, s]`` and its Jacobian ``[∂r/∂z, ∂r/∂s]``."""
         r, J, trivial, n_core, payload = self.fun(x[:-1], x[-1], jac)
-        Jx = np.hstack([J, self.dfun_ds(x[:-1], x[-1])[:, None]]) if jac else None
+        Jx = bordered(J, columns=self.dfun_ds(x[:-1], x[-1])) if jac else None
         return r, Jx, trivial, n_core, payload
 
     def scaling(self, x, _previous=None):
@@ -520,11 +523,11 @@ class NaturalThenArclength:
         chord = (xb - xa) / sc
         plane, mid = chord / sc, 0.5 * (xa + xb)
 
-        def bordered(xx, jac):
+        def on_plane(xx, jac):
             r, J, trivial, n_core, payload = self.residual(xx, jac)
-            Jb = np.vstack([J, plane]) if jac else None
+            Jb = bordered(J, rows=plane) if jac else None
             return np.r_[r, plane @ (xx - mid)], Jb, trivial, n_core, payload
 
-        res = newton(bordered, mid, lambda _: sc, self.tol, self.max_iter)
+        res = newton(on_plane, mid, lambda _: sc, self.tol, self.max_iter)
         ok = res.converged and np.linalg.norm((res.z - mid) / sc) <= np.linalg.norm(chord)
         return res.z if ok else None

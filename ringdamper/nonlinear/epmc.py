@@ -26,6 +26,7 @@ from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
 from ringdamper.nonlinear.continuation import ContinuationPoint, NaturalResult, StepControl, natural_then_arclength
 from ringdamper.nonlinear.fourier import default_nt
 from ringdamper.nonlinear.friction import FrictionContacts
+from ringdamper.nonlinear.jacobian import bordered
 from ringdamper.nonlinear.newton import newton
 from ringdamper.nonlinear.structure import Structure
 from ringdamper.status import Status
@@ -95,11 +96,10 @@ class EPMCProblem:
         if not jacobian:
             return r, None, None, m.n_core, ev
         n2, g, d_w, d_x = m.modal_norm2(ev, omega, xi)
-        J = np.zeros((self.n, self.n))
-        J[:m.n_core, :m.n_core] = ev.take_jacobian()
-        J[:m.n_core, -2], J[:m.n_core, -1] = ev.dr_domega, ev.dr_dxi
-        J[-2, :m.n_core], J[-2, -2], J[-2, -1] = g / (2 * n2), d_w / (2 * n2), d_x / (2 * n2)
-        J[-1, self.phase_index] = 1.0
+        amplitude = np.r_[g, d_w, d_x] / (2 * n2)
+        phase = np.zeros(self.n)
+        phase[self.phase_index] = 1.0
+        J = bordered(ev.J, np.c_[ev.dr_domega, ev.dr_dxi], np.vstack([amplitude, phase]))
         return r, J, ev.trivial, m.n_core, ev
 
     def dfun_ds(self, z, s):

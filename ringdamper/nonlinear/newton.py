@@ -6,6 +6,15 @@ decoupled): such an unknown appears only in its own row (identity) and possibly 
 rows appended by the problem (normalisation, phase, arc-length). :class:`Factorization`
 eliminates them exactly before the LU factorisation, so the dense solve only involves the
 active pairs.
+
+A problem may give its Jacobian as an operator (:mod:`ringdamper.nonlinear.jacobian`): Newton forms
+it when it factorises, and the continuation's tangents solve with it by GMRES on a lagged
+factorisation (:func:`linear_solver`, :mod:`ringdamper.nonlinear.krylov`). Newton's own steps always
+use an LU: its chord steps with the factorisation it was given (a lagged solver's LU), a fresh
+Jacobian factorised. Measured on the default ring (H = 3, n ≈ 1480; docs/nonlinear_core.md §10):
+GMRES Newton steps on a lagged LU, or chord steps by GMRES, cost more than they save (a pair that
+changes its stick/slip state changes the Jacobian by a block of rank up to 3(2H + 1), which GMRES
+on the old LU needs as many iterations to capture), whereas the tangents need 3–7 iterations.
 """
 from __future__ import annotations
 
@@ -15,13 +24,17 @@ from typing import Any, Callable
 import numpy as np
 import scipy.linalg as sla
 
+from ringdamper.nonlinear import krylov
+from ringdamper.nonlinear.jacobian import dense, is_operator
+from ringdamper.nonlinear.krylov import LaggedSolver
+
 
 class Factorization:
     """LU of ``J`` after eliminating the trivial unknowns ``T`` (columns ``e_i`` in the first
     ``n_core`` rows): ``x_T = b_T − J[T, N] x_N`` and the Schur system on the other unknowns."""
 
     def __init__(self, J: np.ndarray, trivial: np.ndarray | None, n_core: int):
-        n = J.shape[0]
+        n = self.n = J.shape[0]
         T = np.zeros(n, bool) if trivial is None else np.r_[trivial, np.zeros(n - trivial.size, bool)]
         self.T, self.N = np.flatnonzero(T), np.flatnonzero(~T)
         extra = self.N[self.N >= n_core]                     # rows that may touch T columns
@@ -33,6 +46,11 @@ class Factorization:
             A[self.extra_pos] -= self.JXT @ self.JTN
         self.lu = sla.lu_factor(A, check_finite=False, overwrite_a=A is not J)
 
+    @property
+    def factorization(self) -> "Factorization":
+        """Itself (the LU a :class:`ringdamper.nonlinear.krylov.LaggedSolver` stands on otherwise)."""
+        return self
+
     def solve(self, b: np.ndarray) -> np.ndarray:
         bN = b[self.N].copy()
         if self.T.size and self.extra_pos.size:
@@ -43,15 +61,30 @@ class Factorization:
         return x
 
 
+def linear_solver(J, trivial: np.ndarray | None, n_core: int, previous=None,
+                  weights: np.ndarray | None = None):
+    """Solver of systems with the Jacobian ``J``: GMRES preconditioned by the LU of ``previous``
+    (a solver of an earlier Jacobian of the same shape) when ``J`` is an operator of at least
+    :data:`ringdamper.nonlinear.krylov.MIN_SIZE` unknowns (:class:`ringdamper.nonlinear.krylov.LaggedSolver`;
+    ``weights``: 1/scale of the unknowns), otherwise the :class:`Factorization` of ``J``."""
+    def factorize(A):
+        return Factorization(A, trivial, n_core)
+
+    lagged = is_operator(J) and J.shape[0] >= krylov.MIN_SIZE
+    if lagged and previous is not None and previous.factorization.n == J.shape[0]:
+        return LaggedSolver(J, previous.factorization, weights, factorize)
+    return factorize(dense(J))
+
+
 @dataclass
 class NewtonResult:
     z: np.ndarray
     converged: bool
     iterations: int
     payload: Any                      # the problem's evaluation at ``z``
-    factorization: Factorization | None
+    factorization: Factorization | LaggedSolver | None   # the solver last used
     reason: str = ""
-    jacobians: int = 0                # Jacobian factorisations performed
+    jacobians: int = 0                # fresh Jacobians (factorised, or solved with a lagged LU)
     effort: float = 0.0               # Jacobians + iterations / chord budget
 
 
@@ -91,6 +124,7 @@ def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarr
 def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_min):
     n_jac = n_newton = it = 0
     fresh = fac is None
+    fac = None if fresh else fac.factorization       # chord steps with an LU
     ev = fun(z, fresh)
     dz = None                                    # correction of ``ev`` with ``fac``, if known
     while True:
@@ -98,10 +132,10 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_
             if ev[1] is None:
                 ev = fun(z, True)
             r, J, trivial, n_core, payload = ev
-            if not (np.all(np.isfinite(r)) and np.all(np.isfinite(J))):
+            if not (np.all(np.isfinite(r)) and (is_operator(J) or np.all(np.isfinite(J)))):
                 return NewtonResult(z, False, it, payload, None, "non-finite residual or Jacobian",
                                     n_jac)
-            fac = Factorization(J, trivial, n_core)
+            fac = Factorization(dense(J), trivial, n_core)
             n_jac += 1
             dz = None
         payload = ev[4]

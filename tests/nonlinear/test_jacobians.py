@@ -1,6 +1,7 @@
 """Analytical Jacobians against central finite differences, to 1e-6 relative: the
 contact AFT (both laws) in stick, slip, separation and mixed states, and the full condensed EPMC
-and forced residuals (explicit pole modes, rigid-body gauge, complex cyclic matrices)."""
+and forced residuals (explicit pole modes, rigid-body gauge, complex cyclic matrices); the EPMC's
+Jacobian operator's products against its matrix, to round-off."""
 import zlib
 
 import numpy as np
@@ -11,6 +12,7 @@ from ringdamper.nonlinear.epmc import EPMCProblem
 from ringdamper.nonlinear.forced import ForcedProblem
 from ringdamper.nonlinear.fourier import Fourier
 from ringdamper.nonlinear.friction import FrictionContacts, contact_aft
+from ringdamper.nonlinear.jacobian import dense, is_operator
 
 from .systems import cyclic_structure, free_body, multi_dof
 
@@ -60,10 +62,17 @@ def test_contact_jacobian(law, state):
 
 
 def _check_problem(fun, z, scale):
+    """The Jacobian against central differences; an operator's product ``J v`` against its matrix
+    (to round-off) on random vectors."""
     r0, J, *_ = fun(z)
+    A = dense(J)
     Jfd = fd_jacobian(lambda x: fun(x)[0], z, 1e-7 * scale)
-    err = np.abs(J - Jfd)
+    err = np.abs(A - Jfd)
     assert np.max(err) <= 1e-6 * np.max(np.abs(Jfd)), np.unravel_index(np.argmax(err), err.shape)
+    if is_operator(J):
+        V = np.random.default_rng(3).standard_normal((z.size, 4)) * scale[:, None]
+        products = np.column_stack([J.matvec(v) for v in V.T])
+        assert np.max(np.abs(products - A @ V)) <= 1e-13 * np.max(np.abs(A @ V))
 
 
 def _state(model, amp, rng):

@@ -1,0 +1,56 @@
+"""Jacobians given as matrices or as operators, and their bordering.
+
+A problem's ``fun(z, jacobian)`` (:func:`ringdamper.nonlinear.newton.newton`) may return its Jacobian
+as a dense array or as an operator with ``shape``, ``matvec(v)`` (the product ``J v``, without
+forming ``J``) and ``toarray()`` (``J`` formed on demand). An operator lets the Newton solve with a
+lagged factorisation as preconditioner (:class:`ringdamper.nonlinear.krylov.LaggedSolver`) and
+form ``J`` only when that no longer converges. The continuation borders Jacobians with extra
+columns (``∂r/∂s``) and rows (arc-length hyperplane, amplitude and phase conditions):
+:func:`bordered` does that for both kinds.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def is_operator(J) -> bool:
+    """True for a Jacobian given as an operator (not a dense array)."""
+    return J is not None and not isinstance(J, np.ndarray)
+
+
+def dense(J) -> np.ndarray:
+    """The Jacobian as a dense array."""
+    return J.toarray() if is_operator(J) else J
+
+
+def apply(J, v: np.ndarray) -> np.ndarray:
+    """The product ``J v``."""
+    return J.matvec(v) if is_operator(J) else J @ v
+
+
+class Bordered:
+    """``[[A, C], [R]]``: the operator ``A`` (m × n) with columns ``C`` (m × k) on its right and
+    rows ``R`` (l × (n + k)) below."""
+
+    def __init__(self, A, columns: np.ndarray, rows: np.ndarray):
+        self.A, self.columns, self.rows = A, columns, rows
+        m, n = A.shape
+        self.shape = (m + rows.shape[0], n + columns.shape[1])
+
+    def matvec(self, v: np.ndarray) -> np.ndarray:
+        n = self.A.shape[1]
+        return np.r_[apply(self.A, v[:n]) + self.columns @ v[n:], self.rows @ v]
+
+    def toarray(self) -> np.ndarray:
+        return np.vstack([np.hstack([dense(self.A), self.columns]), self.rows])
+
+
+def bordered(J, columns=None, rows=None):
+    """``J`` with ``columns`` (m × k, or a vector for k = 1) appended on its right and ``rows``
+    (l × (n + k), or a vector for l = 1) below, of the same kind as ``J`` (array or operator)."""
+    m, n = J.shape
+    columns = np.zeros((m, 0)) if columns is None else np.asarray(columns, float).reshape(m, -1)
+    rows = np.zeros((0, n + columns.shape[1])) if rows is None else np.atleast_2d(np.asarray(rows, float))
+    if is_operator(J):
+        return Bordered(J, columns, rows)
+    return np.vstack([np.hstack([J, columns]), rows])

@@ -25,6 +25,11 @@ The points solved by the stuck shortcut (all pairs stick: ``y(α) = (α/α₁) y
 share one Jacobian up to ``J(α) = S_r J(α₁) S_c`` (:func:`ringdamper.nonlinear.epmc._stuck_points`):
 ``S_r`` scales the amplitude row, which ``D_r`` undoes, and ``S_c`` the ω and ξ columns by ``α/α₁``
 as ``scale(z)`` scales the ``y`` columns, so ``D_r J D_c`` and κ are those of the first of them.
+
+κ is reported to :data:`SIGNIFICANT_DIGITS` significant digits (:func:`reported`): the estimate is
+good to a factor of a few only, and its last bits depend on the memory alignment the BLAS kernel
+meets (two runs in one process differ by ~1e-16 relative), which the rounding keeps out of dnnm.nc,
+so a rerun reproduces the file bit for bit.
 """
 from __future__ import annotations
 
@@ -42,6 +47,9 @@ from ringdamper.status import usable_status
 #: κ above which rounding alone may move a converged point by more than 1e-6 (relative, scaled
 #: unknowns): 1e-6 / (2 ε), two kernels each off by κ ε (module docstring)
 ILL_CONDITIONED = 1e-6 / (2 * np.finfo(float).eps)
+
+#: significant digits of the reported κ (module docstring)
+SIGNIFICANT_DIGITS = 4
 
 #: relative agreement of ``y(α_i) α₁ / α_i`` with ``y(α₁)`` (and of ω, ξ) that makes point ``i`` a
 #: scaled copy of point ``α₁`` (the stuck shortcut builds them exactly so, to rounding)
@@ -89,7 +97,16 @@ def backbone_conditions(backbone: Backbone) -> np.ndarray:
     for i in np.flatnonzero(usable_status(np.asarray(backbone.status))):
         shared = i > 0 and np.isfinite(kappa[0]) and _scaled_copy(backbone, 0, i)
         kappa[i] = kappa[0] if shared else point_condition(own, i)
-    return kappa
+    return reported(kappa)
+
+
+def reported(kappa: np.ndarray) -> np.ndarray:
+    """``kappa`` rounded to :data:`SIGNIFICANT_DIGITS` significant digits (NaN and inf kept)."""
+    out = np.array(kappa, dtype=float)
+    ok = np.isfinite(out) & (out > 0)
+    unit = 10.0 ** (np.floor(np.log10(out[ok])) - (SIGNIFICANT_DIGITS - 1))
+    out[ok] = np.round(out[ok] / unit) * unit
+    return out
 
 
 def _scaled_copy(backbone: Backbone, first: int, i: int) -> bool:

@@ -152,10 +152,10 @@ def test_stick_limit_is_the_slip_onset(chain):
 def test_lagged_tangents_trace_the_backbone_of_exact_ones(chain, monkeypatch):
     """Tangents by GMRES on a lagged factorisation (``krylov.MIN_SIZE`` = 0) against tangents from a
     fresh LU at every point (``MIN_SIZE`` above the system size): the same statuses and, at every
-    converged point, the same ω (1e-9 relative), ζ (1e-8 absolute) and γ (1e-6 relative): both lie
-    within Newton's tolerance of one root, 1e-8 in the unknowns with ξ scaled by ω, i.e. 1e-8 in ζ
-    and, γ being proportional to the damping, ~1e-8/ζ relative in γ (measured: 9e-8); a
-    switch to another branch moves them by 1e-2 or more."""
+    converged point, the same ω (2e-8 relative), ζ (2e-8 absolute) and γ (1e-6 relative): each run
+    lies within Newton's tolerance of one root, 1e-8 in the unknowns with ξ scaled by ω, i.e. 1e-8
+    in ω and ζ and, γ being proportional to the damping, ~1e-8/ζ relative in γ (measured: ω 3.8e-9,
+    γ 9e-8); a switch to another branch moves them by 1e-2 or more."""
     cfg, reduced, static, structure, contacts, target_hz = chain
     w_stuck = target_stuck_frequency(structure, contacts, target_hz)
     runs = []
@@ -166,7 +166,7 @@ def test_lagged_tangents_trace_the_backbone_of_exact_ones(chain, monkeypatch):
     assert np.array_equal(lagged.status.values, exact.status.values)
     ok = np.isin(exact.status.values, (0, 3))
     assert ok.all() and np.sum(exact.zeta.values > 1e-6) >= 2
-    assert np.allclose(lagged.frequency.values[ok], exact.frequency.values[ok], rtol=1e-9, atol=0)
-    assert np.max(np.abs(lagged.zeta.values - exact.zeta.values)[ok]) <= 1e-8
+    assert np.allclose(lagged.frequency.values[ok], exact.frequency.values[ok], rtol=2e-8, atol=0)
+    assert np.max(np.abs(lagged.zeta.values - exact.zeta.values)[ok]) <= 2e-8
     g = exact.gamma.values[ok]
     assert np.allclose(lagged.gamma.values[ok], g, rtol=1e-6, atol=0)

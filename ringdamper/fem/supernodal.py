@@ -100,15 +100,26 @@ class SupernodalLDL:
     def shape(self) -> tuple[int, int]:
         return self.lu.shape
 
-    def solve(self, B: np.ndarray) -> np.ndarray:
-        """A⁻¹ B for a real (n, k) block B."""
-        B = np.asarray(B, dtype=float)
+    def solve(self, B) -> np.ndarray:
+        """A⁻¹ B for a real (n, k) block B, dense or sparse (a sparse B is scattered straight into the
+        permuted work array: no dense copy of it is made)."""
+        if not sp.issparse(B):
+            B = np.asarray(B, dtype=float)
         if B.ndim != 2 or B.shape[0] != self.shape[0]:
             raise ValueError(f"B must be ({self.shape[0]}, k), got {B.shape}")
-        X = np.empty_like(B, order="C")
-        if B.shape[1] == 0:
-            return X
-        X[self.perm] = B                  # P B (row i of B goes to position perm[i])
+        if sp.issparse(B):
+            B = B.tocoo()
+            X = np.zeros(B.shape, dtype=float)
+            X[self.perm[B.row], B.col] = B.data    # P B (row i of B goes to position perm[i])
+        else:
+            X = np.empty(B.shape, dtype=float)
+            X[self.perm] = B
+        if B.shape[1]:
+            self._solve_permuted(X)
+        return X[self.perm]
+
+    def _solve_permuted(self, X: np.ndarray) -> None:
+        """X <- (P A Pᵀ)⁻¹ X in place, for a C-ordered (n, k) X already in the permuted order."""
         # X is C-ordered: X[c0:c1].T is a Fortran-ordered view, which BLAS updates in place
         for s in self.supernodes:         # L y = P B
             xs = X[s.start:s.stop].T
@@ -121,4 +132,3 @@ class SupernodalLDL:
             if len(s.below):
                 _into(xs, dgemm(-1.0, X[s.below].T, s.rows_below, beta=1.0, c=xs, overwrite_c=1))
             _into(xs, dtrsm(1.0, s.diagonal, xs, side=1, lower=1, trans_a=0, diag=1, overwrite_b=1))
-        return X[self.perm]

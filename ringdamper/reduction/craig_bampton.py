@@ -79,8 +79,7 @@ def interior_blocks(Kii: sp.csr_matrix, Mii: sp.csr_matrix, Kib: sp.csr_matrix) 
         K_rb = Kib[rows]
         cols = np.unique(K_rb.indices)
         factors = SupernodalLDL(Kii[rows][:, rows])
-        blocks.append(InteriorBlock(rows=rows, cols=cols, factors=factors,
-                                    psi=-factors.solve(K_rb[:, cols].toarray())))
+        blocks.append(InteriorBlock(rows=rows, cols=cols, factors=factors, psi=factors.solve(-K_rb[:, cols])))
     return blocks
 
 

@@ -27,6 +27,9 @@ import scipy.sparse as sp
 from scipy.linalg.blas import dgemm, dtrsm
 from scipy.sparse.linalg import splu
 
+#: Columns per chunk of the final un-permutation: a chunk-sized buffer instead of a second copy of X.
+UNPERMUTE_COLUMNS = 64
+
 
 def _into(target: np.ndarray, result: np.ndarray) -> None:
     """Store a BLAS result in ``target`` unless BLAS already wrote it there (Fortran-ordered views are
@@ -116,7 +119,9 @@ class SupernodalLDL:
             X[self.perm] = B
         if B.shape[1]:
             self._solve_permuted(X)
-        return X[self.perm]
+        for c in range(0, X.shape[1], UNPERMUTE_COLUMNS):    # X <- Pᵀ X, in place by column chunks
+            X[:, c:c + UNPERMUTE_COLUMNS] = X[self.perm, c:c + UNPERMUTE_COLUMNS]
+        return X
 
     def _solve_permuted(self, X: np.ndarray) -> None:
         """X <- (P A Pᵀ)⁻¹ X in place, for a C-ordered (n, k) X already in the permuted order."""

@@ -17,7 +17,6 @@ from ringdamper.reduction import (
     stuck_frequencies,
     stuck_matrices,
 )
-from ringdamper.reduction.craig_bampton import node_product
 from ringdamper.reduction.partition import partition
 from ringdamper.reduction.stage import reduction_sizes
 
@@ -145,13 +144,3 @@ def test_argument_errors(small):
         reduce_sector(model, EO, harmonics=[0], n_fi=80, n_if=10_000)
     with pytest.raises(ValueError, match="n_fi"):
         reduce_sector(model, EO, harmonics=[0], n_fi=10_000, n_if=40)
-
-
-def test_node_product_is_the_sparse_product_to_the_bit(small):
-    """The mass matrix couples a node's components alike (M_s ⊗ I_3): node_product equals M X bit for
-    bit; a matrix not of that form (the stiffness) gives K X as well."""
-    model, *_ = small
-    M, K = model.M.tocsr(), model.K.tocsr()
-    X = np.random.default_rng(7).standard_normal((model.n_dofs, 11))
-    assert np.array_equal(node_product(M, X), M @ X)
-    assert np.array_equal(node_product(K, X), K @ X)

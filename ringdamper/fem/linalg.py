@@ -78,7 +78,8 @@ def eigh_rows(K: np.ndarray, M: np.ndarray, R: np.ndarray) -> tuple[np.ndarray, 
     w, Z, info = lapack.dstevd(d, e, compute_v=1)
     if info:
         raise np.linalg.LinAlgError(f"the tridiagonal eigensolver did not converge (dstevd: {info})")
-    W = np.asfortranarray(sla.solve_triangular(L, np.asarray(R, dtype=dtype).T, lower=True).conj().T)
+    R = np.asarray(R, dtype=float)      # real rows: (L^-1 R^T)^H = R L^-H
+    W = np.asfortranarray(sla.solve_triangular(L, R.T.astype(dtype), lower=True).conj().T)
     if n > 1:   # Q = H(1) ... H(n-1) acts on coordinates 2..n (``unmtr`` with uplo L)
         W[:, 1:], _, info = unmqr("R", "N", reflectors[1:, :-1], tau[:n - 1], W[:, 1:],
                                   lwork=max(1, 64 * W.shape[0]), overwrite_c=1)

@@ -47,8 +47,9 @@ def _element_dofs(basis: Basis) -> np.ndarray:
 
 
 def _assemble_matrix(basis: Basis, ke: np.ndarray) -> sp.csr_matrix:
-    """Sum element matrices ke (element, 3n, 3n) into a global CSR matrix."""
-    dofs = _element_dofs(basis)
+    """Sum element matrices ke (element, 3n, 3n) into a global CSR matrix (32-bit COO indices, as
+    SciPy's conversion stores them: no 64-bit copies of the E (3n)² index pairs)."""
+    dofs = _element_dofs(basis).astype(np.int32)
     n = 3 * basis.N
     rows = np.repeat(dofs, dofs.shape[1], axis=1).ravel()
     cols = np.tile(dofs, (1, dofs.shape[1])).ravel()

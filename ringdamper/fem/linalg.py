@@ -1,4 +1,5 @@
-"""Sparse direct solves and the lowest modes of the symmetric/Hermitian FE matrices.
+"""Sparse direct solves, the lowest modes of the symmetric/Hermitian FE matrices, and the complete
+dense eigen-decomposition of a Hermitian pair restricted to a few rows of the eigenvectors.
 
 SuperLU with the minimum-degree ordering of A^T + A (structurally symmetric matrices): on the
 27-node-brick sector it halves the fill and factorises ~2.5x faster than the default COLAMD.
@@ -7,7 +8,9 @@ SuperLU with the minimum-degree ordering of A^T + A (structurally symmetric matr
 from __future__ import annotations
 
 import numpy as np
+import scipy.linalg as sla
 import scipy.sparse as sp
+from scipy.linalg import lapack
 from scipy.sparse.linalg import LinearOperator, eigsh, splu
 
 START_SEED = 0  # ARPACK's start vector: seeded, so that a rerun gives the same modes to the bit
@@ -47,3 +50,40 @@ def lowest_modes(K: sp.spmatrix, M: sp.spmatrix, n_modes: int, shift: float, lu=
     phi = phi[:, order]
     phi = phi / np.sqrt(np.real(np.einsum("ij,ij->j", phi.conj(), M @ phi)))
     return shift + 1.0 / nu[order], phi
+
+
+def eigh_rows(K: np.ndarray, M: np.ndarray, R: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """All eigenvalues w (ascending) of the dense Hermitian pair K phi = w M phi (M positive definite)
+    and R Phi, the rows R (r x n, real) of the mass-normalised eigenvectors Phi (Phi^H M Phi = I).
+
+    The steps of LAPACK's ``zhegvd``/``dsygvd`` (what ``scipy.linalg.eigh(K, M)`` calls): M = L L^H
+    (``potrf``), C = L^-1 K L^-H (``hegst``), C = Q T Q^H with T real tridiagonal (``hetrd``),
+    T = Z diag(w) Z^T (divide and conquer, ``dstevd``: the ``dstedc`` that ``heevd`` runs), so
+    Phi = L^-H Q Z and w are those of ``eigh`` to the bit. Only R Phi = ((R L^-H) Q) Z is formed: the
+    Householder reflectors of Q are applied to the r rows of R L^-H (``unmqr``) instead of to the
+    n x n matrix Z, and the last triangular solve has r right-hand sides instead of n.
+    """
+    cplx = np.iscomplexobj(K) or np.iscomplexobj(M)
+    dtype = np.complex128 if cplx else np.float64
+    names = ("potrf", "hegst", "hetrd", "hetrd_lwork", "unmqr") if cplx else \
+        ("potrf", "sygst", "sytrd", "sytrd_lwork", "ormqr")
+    potrf, hegst, hetrd, hetrd_lwork, unmqr = lapack.get_lapack_funcs(names, dtype=dtype)
+    n = K.shape[0]
+    L, info = potrf(np.asarray(M, dtype=dtype), lower=1)
+    if info:
+        raise np.linalg.LinAlgError(f"M is not positive definite (potrf: leading minor {info})")
+    C, info = hegst(np.asarray(K, dtype=dtype), L, itype=1, lower=1)
+    work, info = hetrd_lwork(n, lower=1)
+    reflectors, d, e, tau, info = hetrd(C, lower=1, lwork=int(work.real), overwrite_a=1)
+    w, Z, info = lapack.dstevd(d, e, compute_v=1)
+    if info:
+        raise np.linalg.LinAlgError(f"the tridiagonal eigensolver did not converge (dstevd: {info})")
+    R = np.asarray(R, dtype=float)      # real rows: (L^-1 R^T)^H = R L^-H
+    W = np.asfortranarray(sla.solve_triangular(L, R.T.astype(dtype), lower=True).conj().T)
+    if n > 1:   # Q = H(1) ... H(n-1) acts on coordinates 2..n (``unmtr`` with uplo L)
+        W[:, 1:], _, info = unmqr("R", "N", reflectors[1:, :-1], tau[:n - 1], W[:, 1:],
+                                  lwork=max(1, 64 * W.shape[0]), overwrite_c=1)
+    rows = W.real @ Z
+    if cplx:
+        rows = rows + 1j * (W.imag @ Z)
+    return w, rows

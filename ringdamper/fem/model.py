@@ -15,7 +15,9 @@ with d_n > 0 closing the contact.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import functools
+from collections.abc import Callable
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
@@ -38,11 +40,17 @@ class ContactPairs:
     ring_node: np.ndarray    # (m,) node of the ring's upper surface
     blisk_node: np.ndarray   # (m,) coincident groove node
     frame: np.ndarray        # (m, 3, 3) rows n, t1, t2 (Cartesian components)
-    area: np.ndarray         # (m,) tributary area (m^2), consistent: integral of the shape function
     position: np.ndarray     # (m, 3) at rest
+    tributary_area: Callable[[], np.ndarray] = field(repr=False)  # computes ``area``
 
     def __len__(self) -> int:
         return len(self.ring_node)
+
+    @functools.cached_property
+    def area(self) -> np.ndarray:
+        """(m,) tributary area (m^2), consistent: integral of the shape function. Computed on first
+        use (a facet quadrature; the reduction stage never needs it)."""
+        return self.tributary_area()
 
 
 @dataclass
@@ -145,21 +153,24 @@ def _contact_pairs(geometry, scalar_basis, nodes, node_body, left, right) -> Con
     groove_facets = _facets_within(mesh, geometry.sets["groove"])
     ring_nodes = np.unique(scalar_basis.get_dofs(top_facets).all())
     groove_nodes = np.unique(scalar_basis.get_dofs(groove_facets).all())
-    area_field = asm(LinearForm(lambda v, w: v),
-                     FacetBasis(mesh, scalar_basis.elem, facets=top_facets))
     # fold the right cut onto the left cut: one pair per physical node pair
     right_to_left = dict(zip(right, left))
-    area = area_field.copy()
     keep = np.array([n not in right_to_left for n in ring_nodes])
-    for node in ring_nodes[~keep]:
-        area[right_to_left[node]] += area_field[node]
-    ring_nodes = ring_nodes[keep]
+    folded, ring_nodes = ring_nodes[~keep], ring_nodes[keep]
+
+    def tributary_area() -> np.ndarray:
+        area_field = asm(LinearForm(lambda v, w: v), FacetBasis(mesh, scalar_basis.elem, facets=top_facets))
+        area = area_field.copy()
+        for node in folded:
+            area[right_to_left[node]] += area_field[node]
+        return area[ring_nodes]
+
     blisk_nodes = groove_nodes[_match(nodes[ring_nodes], nodes[groove_nodes], "contact pairs")]
     assert np.all(node_body[ring_nodes] == BODY_RING) and np.all(node_body[blisk_nodes] != BODY_RING)
     positions = nodes[ring_nodes]
     return ContactPairs(ring_node=ring_nodes, blisk_node=blisk_nodes,
-                        frame=_contact_frames(positions, geometry), area=area[ring_nodes],
-                        position=positions)
+                        frame=_contact_frames(positions, geometry), position=positions,
+                        tributary_area=tributary_area)
 
 
 def build_model(geometry: SectorMesh, config: dict) -> SectorModel:

@@ -27,6 +27,9 @@ import scipy.sparse as sp
 from scipy.linalg.blas import dgemm, dtrsm
 from scipy.sparse.linalg import splu
 
+#: Columns per chunk of the final un-permutation: a chunk-sized buffer instead of a second copy of X.
+UNPERMUTE_COLUMNS = 64
+
 
 def _into(target: np.ndarray, result: np.ndarray) -> None:
     """Store a BLAS result in ``target`` unless BLAS already wrote it there (Fortran-ordered views are
@@ -100,15 +103,28 @@ class SupernodalLDL:
     def shape(self) -> tuple[int, int]:
         return self.lu.shape
 
-    def solve(self, B: np.ndarray) -> np.ndarray:
-        """A⁻¹ B for a real (n, k) block B."""
-        B = np.asarray(B, dtype=float)
+    def solve(self, B) -> np.ndarray:
+        """A⁻¹ B for a real (n, k) block B, dense or sparse (a sparse B is scattered straight into the
+        permuted work array: no dense copy of it is made)."""
+        if not sp.issparse(B):
+            B = np.asarray(B, dtype=float)
         if B.ndim != 2 or B.shape[0] != self.shape[0]:
             raise ValueError(f"B must be ({self.shape[0]}, k), got {B.shape}")
-        X = np.empty_like(B, order="C")
-        if B.shape[1] == 0:
-            return X
-        X[self.perm] = B                  # P B (row i of B goes to position perm[i])
+        if sp.issparse(B):
+            B = B.tocoo()
+            X = np.zeros(B.shape, dtype=float)
+            X[self.perm[B.row], B.col] = B.data    # P B (row i of B goes to position perm[i])
+        else:
+            X = np.empty(B.shape, dtype=float)
+            X[self.perm] = B
+        if B.shape[1]:
+            self._solve_permuted(X)
+        for c in range(0, X.shape[1], UNPERMUTE_COLUMNS):    # X <- Pᵀ X, in place by column chunks
+            X[:, c:c + UNPERMUTE_COLUMNS] = X[self.perm, c:c + UNPERMUTE_COLUMNS]
+        return X
+
+    def _solve_permuted(self, X: np.ndarray) -> None:
+        """X <- (P A Pᵀ)⁻¹ X in place, for a C-ordered (n, k) X already in the permuted order."""
         # X is C-ordered: X[c0:c1].T is a Fortran-ordered view, which BLAS updates in place
         for s in self.supernodes:         # L y = P B
             xs = X[s.start:s.stop].T
@@ -121,4 +137,3 @@ class SupernodalLDL:
             if len(s.below):
                 _into(xs, dgemm(-1.0, X[s.below].T, s.rows_below, beta=1.0, c=xs, overwrite_c=1))
             _into(xs, dtrsm(1.0, s.diagonal, xs, side=1, lower=1, trans_a=0, diag=1, overwrite_b=1))
-        return X[self.perm]

@@ -79,9 +79,14 @@ def interior_blocks(Kii: sp.csr_matrix, Mii: sp.csr_matrix, Kib: sp.csr_matrix) 
         K_rb = Kib[rows]
         cols = np.unique(K_rb.indices)
         factors = SupernodalLDL(Kii[rows][:, rows])
-        blocks.append(InteriorBlock(rows=rows, cols=cols, factors=factors,
-                                    psi=-factors.solve(K_rb[:, cols].toarray())))
+        blocks.append(InteriorBlock(rows=rows, cols=cols, factors=factors, psi=factors.solve(-K_rb[:, cols])))
     return blocks
+
+
+def _interior_rows(A: sp.csr_matrix, interior: np.ndarray, boundary: np.ndarray):
+    """(A_ii, A_ib): the interior rows are sliced once and not kept."""
+    A_i = A[interior]
+    return A_i[:, interior].tocsr(), A_i[:, boundary]
 
 
 class _BlockDiagonalSolve:
@@ -119,9 +124,8 @@ def craig_bampton(K: sp.spmatrix, M: sp.spmatrix, boundary, interior, n_fi: int,
     """
     boundary, interior = np.asarray(boundary), np.asarray(interior)
     K, M = sp.csr_matrix(K), sp.csr_matrix(M)
-    K_i, M_i = K[interior], M[interior]
-    Kii, Kib = K_i[:, interior].tocsr(), K_i[:, boundary]
-    Mii, Mib = M_i[:, interior].tocsr(), M_i[:, boundary]
+    Kii, Kib = _interior_rows(K, interior, boundary)
+    Mii, Mib = _interior_rows(M, interior, boundary)
     nb = len(boundary)
     K_bb = K[boundary][:, boundary].toarray()
     M_bb = M[boundary][:, boundary].toarray()

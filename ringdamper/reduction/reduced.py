@@ -29,6 +29,7 @@ import xarray as xr
 
 from ..fem.contact_law import spring_diagonal
 from ..fem.cyclic import interblade_phase, nodal_diameter
+from ..fem.linalg import eigh_rows
 from ..fem.model import SectorModel, relative_displacement_operator
 from ..io import variable
 from .craig_bampton import CraigBampton, craig_bampton
@@ -147,10 +148,13 @@ class ModalBasis:
 
 
 def modal_basis(rh: ReducedHarmonic, B: np.ndarray, response_index: int) -> ModalBasis:
-    w2, phi = sla.eigh(rh.K, rh.M)
+    """All modes of (K_h, M_h), kept at the contact rows B and the response coordinate only."""
+    rows = np.zeros((B.shape[0] + 1, B.shape[1]))
+    rows[:-1] = B
+    rows[-1, response_index] = 1.0
+    w2, shapes = eigh_rows(rh.K, rh.M, rows)
     m = B.shape[0] // 3
-    return ModalBasis(omega2=w2, contact=(B @ phi).T.reshape(len(w2), m, 3),
-                      response=phi[response_index].copy())
+    return ModalBasis(omega2=w2, contact=shapes[:-1].T.reshape(len(w2), m, 3), response=shapes[-1].copy())
 
 
 def modal_stuck_frequencies(omega2, contact, kn, kt, n_modes: int | None = None) -> np.ndarray:

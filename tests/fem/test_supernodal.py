@@ -55,3 +55,10 @@ def test_block_shape_is_checked(spd):
 
 def test_no_right_hand_side(spd):
     assert SupernodalLDL(spd).solve(np.zeros((spd.shape[0], 0))).shape == (spd.shape[0], 0)
+
+
+def test_sparse_right_hand_side_is_the_dense_one(spd):
+    """A sparse block B gives bit for bit the solve of B.toarray() (scattered, not densified)."""
+    B = sp.random(spd.shape[0], 23, density=0.01, format="csr", random_state=3)
+    factors = SupernodalLDL(spd)
+    assert np.array_equal(factors.solve(B), factors.solve(B.toarray()))

@@ -28,7 +28,9 @@ transition, whatever the step), the consistency test never. After an accepted st
 multiplied by ``min(grow, turn/θ)`` when the corrector was cheap (effort ≤ ``easy``, see
 :func:`newton`), by ``min(1, turn/θ)`` otherwise and halved when it was hard (effort ≥
 ``hard``), never below half (so the tangent turns by about ``turn`` per step, whatever the
-initial and maximum steps). ``jump_mask`` restricts the geometry to the unknowns that identify
+initial and maximum steps). A corrector is a failure once it has used
+:attr:`StepControl.corrector` fresh Jacobians without converging (fail fast: a smaller step is
+cheaper than a long Newton far from the branch). ``jump_mask`` restricts the geometry to the unknowns that identify
 the branch (the EPMC leaves out the mean values, which move freely where the last contact
 holding a rigid-body motion lets go). Failures never raise: they end the run with a status
 (:class:`ringdamper.status.Status`).
@@ -64,6 +66,7 @@ class StepControl:
     easy: float = 1.5        # corrector effort (:attr:`NewtonResult.effort`) below which ds grows
     hard: float = 4.0        # effort above which ds shrinks
     turn: float = 0.1
+    corrector: int | None = None  # fresh Jacobians of a corrector before its step is rejected (None: max_iter)
 
     def __post_init__(self):
         if not 0 < self.minimum <= self.initial:
@@ -74,6 +77,12 @@ class StepControl:
                              f"{self.minimum}")
         if not 0 < self.turn < np.pi / 4:
             raise ValueError(f"StepControl: turn must lie in (0, pi/4) rad, got {self.turn}")
+        if self.corrector is not None and self.corrector < 1:
+            raise ValueError(f"StepControl: corrector must be >= 1 fresh Jacobians, got {self.corrector}")
+
+    def corrector_iterations(self, max_iter: int) -> int:
+        """Fresh Jacobians a predictor–corrector step may use: :attr:`corrector`, at most ``max_iter``."""
+        return max_iter if self.corrector is None else min(self.corrector, max_iter)
 
     def adapt(self, ds: float, res, turn: float = 0.0) -> float:
         """New step from the corrector's effort (Jacobians + iterations / chord budget, see
@@ -187,12 +196,13 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
     elif accept is not None:
         accept(z, res.payload)
     ds = steps.initial
+    corrector = steps.corrector_iterations(max_iter)
     while gi < n:
         s_t = min(s + ds, grid[gi])
         on_grid = s_t >= grid[gi] - 1e-12 * max(1.0, abs(grid[gi]))
         s_t = grid[gi] if on_grid else s_t
         z_pred = z + (s_t - s) * tangent
-        res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale, tol, max_iter,
+        res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale, tol, corrector,
                      factorization=fac)
         why = res.reason
         if res.converged:
@@ -294,6 +304,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
     last_fac, t = _tangent(J0, trivial0, n_core0, direction / scale, scale, None)
     pts, tans, scales = [ContinuationPoint(0.0, z0, payload0, 0)], [t], [scale]
     z, s, ds = z0, 0.0, steps.initial
+    corrector = steps.corrector_iterations(max_iter)
 
     def step(d, ds, fac):
         """Corrector from ``z + ds·d`` on the hyperplane normal to ``d`` (scaled), and the tests
@@ -305,7 +316,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
             Jb = bordered(J, rows=plane) if jac else None
             return np.r_[r, plane @ (zz - zp)], Jb, trivial, n_core, payload
 
-        res = newton(on_plane, zp, lambda _: scale, tol, max_iter, factorization=fac)
+        res = newton(on_plane, zp, lambda _: scale, tol, corrector, factorization=fac)
         if not res.converged:
             return res, None, None, 0.0, res.reason
         chord = (res.z - z) / scale

@@ -132,6 +132,19 @@ class EPMCProblem:
         return self.model.pin_seen()
 
 
+#: fresh Jacobians a corrector of the EPMC continuation may use before its step is rejected and halved
+#: (``max_iter`` still bounds the start point and the grid solves). Measured (docs/nonlinear_core.md
+#: §4.1): a corrector that converges takes 0–2 fresh Jacobians on nine steps in ten, one that fails
+#: cycles between contact states for all of ``max_iter``; 6 cost least over the hard rings (10 did not).
+CORRECTOR_JACOBIANS = 6
+
+
+def default_steps() -> StepControl:
+    """Step control of the EPMC in ``log α``: initial 0.2, minimum 1e-4, maximum 0.5, correctors failed
+    after :data:`CORRECTOR_JACOBIANS` fresh Jacobians."""
+    return StepControl(initial=0.2, minimum=1e-4, maximum=0.5, corrector=CORRECTOR_JACOBIANS)
+
+
 def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
          nt: int | None = None, mode: int = 0, omega_target: float | None = None,
          pole_band: float = 0.1, tol: float = 1e-8, max_iter: int = 20,
@@ -144,7 +157,7 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     ascending frequency, or the one closest to ``omega_target`` [rad/s]). ``pole_band``: modes of
     harmonic ``h`` whose ω_r lies within ``±pole_band·hω₀`` of ``hω₀`` (ω₀ the stuck frequency;
     low side widened to ``(1 − 2·pole_band)``) are kept explicit. ``steps``: control in ``log α``
-    (default initial 0.2, min 1e-4, max 0.5). ``gauge_reference``: position of zero modes while
+    (default :func:`default_steps`). ``gauge_reference``: position of zero modes while
     they are undetermined at the first point (default 0). ``stuck_shortcut``: the grid points
     below the stick limit of the linear stuck mode (:func:`stick_limit`) are that mode scaled by α,
     without Newton (:func:`_stuck_points`). ``alpha_start``: where the continuation of the other
@@ -163,7 +176,7 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     if H < 1:
         raise ValueError("the EPMC needs H >= 1")
     nt = default_nt(H) if nt is None else nt
-    steps = steps or StepControl(initial=0.2, minimum=1e-4, maximum=0.5)
+    steps = steps or default_steps()
     omega0, phi = _stuck_mode(structure, contacts, mode, omega_target)
     window = (omega0 * (1 - 2 * pole_band), omega0 * (1 + pole_band))
     model = CondensedHBM(structure, contacts, H, nt, explicit=pole_modes(structure, H, *window))
@@ -331,7 +344,7 @@ def continue_point(backbone: Backbone, j: int, alpha: float, tol: float = 1e-8, 
         model.eta_ref = z0[model.eta_slices[0].start + model.zero_modes].copy()
     problem = EPMCProblem(model, backbone.phase_index, backbone.drift_tol)
     run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log([alpha]), problem.scale,
-                                 steps or StepControl(initial=0.2, minimum=1e-4, maximum=0.5), tol, max_iter,
+                                 steps or default_steps(), tol, max_iter,
                                  accept=problem.accept, s_start=np.log(backbone.alpha[j]),
                                  on_failure=problem.on_failure, jump_mask=problem.jump_mask())
     if run.points[0] is None:

@@ -8,11 +8,14 @@ of 0.1 rad): same status at every grid amplitude and, where converged, the same 
 by 1e-2 or more; the solver tolerance leaves about 1e-5. Runs that stop are allowed only with a
 status, identically in both, and on at most 3 % of the family.
 """
+import dataclasses
 from functools import lru_cache
 
 import numpy as np
 import pytest
 
+from ringdamper.nonlinear import epmc as epmc_module
+from ringdamper.nonlinear import newton
 from ringdamper.nonlinear.continuation import StepControl
 from ringdamper.nonlinear.epmc import epmc
 from ringdamper.nonlinear.jenkins_chains import ISSUE_GRID, OPTIONS, SEEDS, chain_grid, issue_chain, jenkins_chain
@@ -113,7 +116,41 @@ def test_arclength_refuses_a_parallel_branch_at_every_step_size():
 
 @pytest.mark.parametrize("kw, field", [(dict(initial=1e-5, minimum=1e-4, maximum=0.5), "minimum"),
                                        (dict(initial=0.2, minimum=1e-4, maximum=1e-5), "maximum"),
-                                       (dict(initial=0.2, minimum=1e-4, maximum=0.5, turn=1.0), "turn")])
+                                       (dict(initial=0.2, minimum=1e-4, maximum=0.5, turn=1.0), "turn"),
+                                       (dict(initial=0.2, minimum=1e-4, maximum=0.5, corrector=0), "corrector")])
 def test_step_control_refuses_bad_settings(kw, field):
     with pytest.raises(ValueError, match=field):
         StepControl(**kw)
+
+
+@pytest.mark.parametrize("seed", [2, 45])
+def test_fail_fast_correctors_keep_the_branch_with_fewer_factorisations(seed, monkeypatch):
+    """A corrector still unconverged after ``StepControl.corrector`` fresh Jacobians fails its step,
+    which is halved, instead of running on to ``max_iter`` (20). On chains of the family whose
+    correctors fail on the way, the EPMC's default steps (with the limit) trace the backbone of the
+    same steps without it, value for value (without rigid-body modes to pin, a failed corrector leaves
+    nothing behind), with fewer LU
+    factorisations."""
+    count = [0]
+    factorize = newton.Factorization.__init__
+
+    def counted(self, *args, **kwargs):
+        count[0] += 1
+        factorize(self, *args, **kwargs)
+
+    monkeypatch.setattr(newton.Factorization, "__init__", counted)
+    st, c = jenkins_chain(seed)
+    alpha = chain_grid(st, c)
+    runs = {}
+    for limit in (True, False):
+        count[0] = 0
+        steps = epmc_module.default_steps()
+        bb = epmc(st, c, alpha, steps=steps if limit else dataclasses.replace(steps, corrector=None), **OPTIONS)
+        runs[limit] = bb, count[0]
+    (fast, n_fast), (full, n_full) = runs[True], runs[False]
+    assert fast.status.tolist() == full.status.tolist()
+    ok = fast.status == Status.CONVERGED
+    assert ok.sum() >= 5
+    np.testing.assert_allclose(fast.omega[ok], full.omega[ok], rtol=1e-12)
+    np.testing.assert_allclose(fast.zeta[ok], full.zeta[ok], rtol=1e-10, atol=1e-14)
+    assert n_fast < 0.9 * n_full

@@ -25,7 +25,7 @@ from ringdamper.nonlinear.normalisation import normalised_frequency
 from ringdamper.nonlinear.separation import warn_separation
 from ringdamper.nonlinear.structure import HarmonicData, Structure
 from ringdamper.nonlinear.truncation import warn_truncation
-from ringdamper.status import CHAIN_FAILED
+from ringdamper.status import CHAIN_FAILED, Status
 
 log = logging.getLogger(__name__)
 
@@ -121,8 +121,19 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
              "friction_law": cfg["friction_law"], "structural_damping_ratio": cfg["structural_damping_ratio"],
              "omega_stuck": omega_stuck, "omega_stuck_default": omega_stuck_default,
              "harmonics_resolved": adaptive.resolved, "harmonics_failed": "; ".join(adaptive.notes),
+             "unsolved_reason": first_unsolved_reason(alpha, out["status"], adaptive.reason),
              "wall_time_s": time.perf_counter() - start}
     return dnnm_dataset(alpha, contacts.npairs, values, out["status"], attrs)
+
+
+def first_unsolved_reason(alpha: np.ndarray, status, reason: list) -> str:
+    """Why the continuation stopped: the first grid point with status NO_CONVERGENCE, its amplitude and
+    the driver's reason ("" if every point was reached)."""
+    unsolved = np.flatnonzero(np.asarray(status) == Status.NO_CONVERGENCE)
+    if not unsolved.size:
+        return ""
+    i = int(unsolved[0])
+    return f"alpha = {alpha[i]:.4g}: {reason[i]}"
 
 
 def max_harmonics(dnnm_cfg: dict) -> int:
@@ -219,4 +230,6 @@ def dnnm_stage(reduced: xr.Dataset, static: xr.Dataset, config: dict, kappa,
         return failed_dnnm(config, kappa, f"{type(err).__name__}: {err}", reduced.sizes["pair"])
     counts = np.bincount(ds.status.values.astype(int), minlength=5)
     log.info("kappa=%s status counts %s wall %.1f s", list(kappa), counts.tolist(), ds.attrs["wall_time_s"])
+    if ds.attrs["unsolved_reason"]:
+        log.info("continuation stopped at %s", ds.attrs["unsolved_reason"])
     return ds

@@ -10,6 +10,7 @@ from ringdamper.nonlinear.epmc import epmc, linear_limit, stick_limit
 from ringdamper.nonlinear.stage import (
     contacts_from_static,
     failed_dnnm,
+    first_unsolved_reason,
     run_dnnm,
     structure_from_reduced,
     target_stuck_frequency,
@@ -42,6 +43,7 @@ def test_linear_limit_and_energy_balance(chain):
     check_contract(ds)
     ok = np.isin(ds.status.values, (0, 3))
     assert np.all(ok), ds.status.values            # the whole amplitude grid is reached
+    assert ds.attrs["unsolved_reason"] == ""
     # linear limit: stuck frequency, no damping, normalised frequency 2.195 exactly
     assert ds.frequency.values[0] * 2 * np.pi == pytest.approx(w_stuck, rel=1e-6)
     assert ds.omega0.values[0] == pytest.approx(2.195, rel=1e-6)
@@ -170,3 +172,21 @@ def test_lagged_tangents_trace_the_backbone_of_exact_ones(chain, monkeypatch):
     assert np.max(np.abs(lagged.zeta.values - exact.zeta.values)[ok]) <= 2e-8
     g = exact.gamma.values[ok]
     assert np.allclose(lagged.gamma.values[ok], g, rtol=1e-6, atol=0)
+
+
+def test_where_the_continuation_stopped_is_recorded(chain, monkeypatch):
+    """A continuation that cannot reach the top of the grid (one Newton iteration a corrector, steps of at
+    least a third of log α's range, so every corrector fails) records its first unsolved amplitude and the
+    driver's reason in ``unsolved_reason``."""
+    from ringdamper.nonlinear import epmc as epmc_module
+
+    cfg, reduced, static, structure, contacts, target_hz = chain
+    w_stuck = target_stuck_frequency(structure, contacts, target_hz)
+    steps = epmc_module.StepControl(initial=2.0, minimum=1.5, maximum=2.0, corrector=1)
+    monkeypatch.setattr(epmc_module, "default_steps", lambda: steps)
+    ds = run_dnnm(reduced, static, cfg, target_hz, w_stuck)
+    status = ds.status.values
+    first = int(np.flatnonzero(status == 1)[0])
+    assert ds.attrs["unsolved_reason"].startswith(f"alpha = {ds.amplitude.values[first]:.4g}: ")
+    assert "step below minimum" in ds.attrs["unsolved_reason"]
+    assert first_unsolved_reason(np.array([1e-6, 1e-5]), [0, 3], ["", ""]) == ""

@@ -20,12 +20,13 @@ settings alone, so the process pool that runs them side by side does not change 
 from __future__ import annotations
 
 import logging
-from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 import xarray as xr
+from threadpoolctl import threadpool_limits
 
 from ...io import variable
+from ...workers import worker_pool
 from .fit import fit_model, is_constant_data
 from .gp import q2
 from .settings import check_settings
@@ -78,11 +79,13 @@ def _fit_task(task):
 
 
 def _fit_all(tasks: list, workers: int) -> list:
-    """:func:`fit_model` of every task, in order, on ``workers`` processes (each fit is seeded by the
-    settings alone, so the models do not depend on the number of workers)."""
+    """:func:`fit_model` of every task, in order, on ``workers`` single-threaded processes (each fit is
+    seeded by the settings alone, so the models do not depend on the number of workers). The fits are
+    small dense problems: in the calling process too they run on one BLAS thread (more only wait)."""
     if workers <= 1 or len(tasks) < 2:
-        return [_fit_task(t) for t in tasks]
-    with ProcessPoolExecutor(max_workers=workers) as pool:
+        with threadpool_limits(1):
+            return [_fit_task(t) for t in tasks]
+    with worker_pool(workers) as pool:
         return list(pool.map(_fit_task, tasks, chunksize=max(1, len(tasks) // (4 * workers))))
 
 

@@ -8,12 +8,11 @@ from __future__ import annotations
 
 import functools
 import itertools
-import multiprocessing
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
 
+from ...workers import worker_pool
 from .trial import contact_section, in_plausible_range, run_trials
 
 
@@ -49,8 +48,8 @@ def stage_trials(config: dict, stage: str) -> list[tuple[dict, int]]:
 
 def run_stage(config: dict, reduced_path, target_hz: float, stage: str, processes: int = 2):
     """All trials of ``stage`` (:func:`stage_trials`) on the study's α grid: ``[(row, curve)]`` in
-    the order of the trials. The trials are dealt in turn to up to ``processes`` spawned worker
-    processes, each running its share on one default ring loaded once (:func:`.trial.run_trials`,
+    the order of the trials. The trials are dealt in turn to up to ``processes`` spawned single-threaded
+    worker processes, each running its share on one default ring loaded once (:func:`.trial.run_trials`,
     which gets everything it needs as arguments)."""
     alpha = tuple(config["studies"]["contact_calibration"]["amplitudes"])
     trials = stage_trials(config, stage)
@@ -58,7 +57,7 @@ def run_stage(config: dict, reduced_path, target_hz: float, stage: str, processe
     run = functools.partial(run_trials, config, reduced_path, target_hz, alpha)
     if n == 1:
         return run(trials)
-    with ProcessPoolExecutor(n, mp_context=multiprocessing.get_context("spawn")) as pool:
+    with worker_pool(n, "spawn") as pool:
         shares = list(pool.map(run, [trials[k::n] for k in range(n)]))
     out = [None] * len(trials)
     for k, share in enumerate(shares):

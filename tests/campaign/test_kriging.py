@@ -73,17 +73,11 @@ def ot_prediction(x, y, settings, points):
     return mean, var
 
 
-def test_interpolates_training_data_without_nugget(training):
+def test_interpolates_training_data_without_nugget(training, fitted):
     x, y = training
-    model, _ = K.fit_model(x, y, {**FAST, "nugget": 1e-12})
-    mean, std = model.predict(x)
+    mean, std = fitted.predict(x)
     assert np.max(np.abs(mean - y)) <= 1e-8 * np.ptp(y)
-    assert np.max(std) <= 1e-4 * model.sigma  # no uncertainty left at the data
-
-
-def test_smooth_data_keep_a_negligible_estimated_nugget(fitted):
-    """The default estimated nugget stays at its lower end on smooth data: the model interpolates."""
-    assert fitted.nugget <= 1e-6
+    assert np.max(std) <= 1e-4 * fitted.sigma  # no uncertainty left at the data
 
 
 def test_recovers_smooth_function(fitted, test_points):

@@ -1,20 +1,16 @@
 """The ``surrogate`` settings of the Kriging fit: defaults and validation.
 
 Scale bounds are tied to the width w = 2 of the κ domain: θ_k ∈ scale_bounds × w, default
-[0.15, 5] × 2 = [0.3, 10]. The lower bound is the median nearest-neighbour distance of a 100-ring design
-(0.31): a length below the spacing of the rings cannot be told apart from scatter, and where the data
-scatter between solution branches a shorter θ₁ lets the likelihood interpolate the scatter with long
-lengths along the other parameters, which gives single rings Kriging weights of order 1 across the box
-(docs/surrogate.md, *Branch scatter*). Above ~10 the likelihood of
+[0.05, 5] × 2 = [0.1, 10]. Below 0.1 the correlation between neighbouring training points (spacing
+≈ 0.4 for 100 points in 3-D) vanishes and the model degenerates into spikes. Above ~10 the likelihood of
 a smooth response keeps rising along a flat ridge (θ, σ → ∞ together) while R becomes ill-conditioned:
 the predictive variance collapses and round-off enters the interpolation, for no gain in accuracy
 (docs/surrogate.md, *Scale bounds*). The squared-exponential kernel is worse conditioned still; give it a
-nugget (~1e-8) if used.
+nugget (~1e-8) if used. The campaign's configuration raises the lower bound to 0.3 and estimates the
+nugget: its top amplitudes scatter between solution branches (docs/surrogate.md, *Branch scatter*).
 
-The nugget factor ν is estimated by maximum likelihood within [low, high] (default [1e-8, 0.1]; profiled
-and polished, see :mod:`.fit`): smooth outputs keep ν ≈ 1e-8 and interpolate their rings, the branch
-scatter of the top amplitudes goes to ν ≈ 0.01-0.1. A single number fixes ν (1e-12: OpenTURNS' own
-round-off floor, a plain interpolation).
+The nugget factor ν is fixed (default 1e-12, OpenTURNS' own round-off floor) or, given as [low, high],
+estimated by maximum likelihood (profiled and polished with θ, see :mod:`.fit`).
 
 ``transform`` names, per output, the scale the Gaussian process models (:mod:`.transform`): ``log``
 (z = ln(y + c), c = ``log_offset`` × the model's largest training value) for the outputs that physics
@@ -35,8 +31,8 @@ DEFAULT_SETTINGS = {
     "kernel": "matern52",        # correlation function, one of KERNELS
     "n_starts": 8,               # multistart size of the likelihood maximisation
     "seed": 0,                   # seed of the starting points (OpenTURNS RandomGenerator)
-    "scale_bounds": (0.15, 5.0),  # θ bounds as multiples of the κ-domain width (2)
-    "nugget": (1.0e-8, 0.1),     # [low, high]: ν estimated by ML; or a fixed nugget factor ν ≥ 0
+    "scale_bounds": (0.05, 5.0),  # θ bounds as multiples of the κ-domain width (2)
+    "nugget": 1.0e-12,           # fixed nugget factor ν ≥ 0, or [low, high] to estimate it by ML
     "min_training": 10,          # fewer usable points than this: the model is not fitted (status 2)
     "transform": {"q_res_z": "log", "omega0": "identity", "zeta": "log", "gamma": "log"},  # per output
     "log_offset": 1.0,           # c of the log transform, × the model's largest training value

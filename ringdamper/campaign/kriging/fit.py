@@ -36,13 +36,14 @@ import logging
 
 import numpy as np
 
-from .gp import GPModel
+from .gp import GPModel, _squared_differences
 from .settings import DOMAIN_WIDTH, check_settings
 
 log = logging.getLogger(__package__)  # one logger for the package: ringdamper.campaign.kriging
 
 MATCH_RTOL = 1.0e-6  # allowed numpy/OpenTURNS prediction gap, fraction of the data spread
 AMPLITUDE_RTOL = 1.0e-6  # OpenTURNS' amplitude vs the closed-form ML estimate at its θ, ν
+COINCIDENT = 1.0e-9  # a check point this close to a training input (κ units) coincides with it
 NUGGET_PROFILE = 5  # log-spaced starting nugget values when the nugget is estimated
 # data whose spread is below this times max|y| (round-off) are taken as constant: no process is fitted
 CONSTANT_RTOL = 1.0e-12
@@ -188,12 +189,18 @@ def fit_model(x: np.ndarray, y: np.ndarray, settings: dict | None = None, name: 
 def _check_against_ot(model: GPModel, fitter_result, name: str) -> None:
     """Warn when the numpy predictor departs from OpenTURNS' GaussianProcessRegression (at the midpoints
     of successive training points) by more than MATCH_RTOL of the data spread: R is then too
-    ill-conditioned (OpenTURNS regularises its Cholesky factor silently); a nugget cures it."""
+    ill-conditioned (OpenTURNS regularises its Cholesky factor silently); a nugget cures it. Midpoints
+    that coincide with a training input are left out: there OpenTURNS adds σ²ν to the cross-covariance
+    and returns the noisy observation (:mod:`.gp`), a gap of order ν, not of conditioning (a factorial
+    design has such midpoints)."""
     import openturns as ot
 
     algo = ot.GaussianProcessRegression(fitter_result)
     algo.run()
     mid = 0.5 * (model.x[:-1] + model.x[1:])
+    mid = mid[np.min(np.sum(_squared_differences(mid, model.x), axis=0), axis=1) > COINCIDENT ** 2]
+    if not len(mid):
+        return
     ours, _ = model.predict(mid, with_std=False)
     gap = np.max(np.abs(ours - np.asarray(algo.getResult().getMetaModel()(mid)).ravel())) / np.ptp(model.y)
     if gap > MATCH_RTOL:

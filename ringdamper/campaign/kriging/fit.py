@@ -9,7 +9,8 @@ R = [ρ_θ(xᵢ - xⱼ)] + νI (kernels in :mod:`.gp`); θ maximises the concent
 by Cobyla from ``n_starts`` starting points (a seeded log-uniform Latin hypercube over the bounds of
 :mod:`.settings`, OpenTURNS ``MultiStart``), then polished by L-BFGS-B in log θ (numpy ℓ of
 :meth:`.gp.GPModel.log_likelihood`, equal to OpenTURNS'): OpenTURNS' solver works on θ mapped linearly
-onto [0, 1], where the short lengths a response with jumps asks for are poorly resolved
+onto [0, 1], where the short lengths a response with jumps asks for (θ ∈ [0.1, 0.3] is 2 % of the
+interval) are poorly resolved; it stopped on the lower bound θ₁ = 0.1 where ℓ rises by 1-5 at θ₁ ≈ 0.2
 (docs/surrogate.md, *Responses with jumps*). A polished θ is handed back to OpenTURNS (fixed parameters,
 amplitude σ̂) so that the fitted result, and the cross-check below, stay OpenTURNS'. ν is fixed or,
 given as [low, high], estimated: the fit above is run at NUGGET_PROFILE log-spaced values of ν (the

@@ -13,8 +13,12 @@ onto [0, 1], where the short lengths a response with jumps asks for (θ ∈ [0.1
 interval) are poorly resolved; it stopped on the lower bound θ₁ = 0.1 where ℓ rises by 1-5 at θ₁ ≈ 0.2
 (docs/surrogate.md, *Responses with jumps*). A polished θ is handed back to OpenTURNS (fixed parameters,
 amplitude σ̂) so that the fitted result, and the cross-check below, stay OpenTURNS'. ν is fixed or,
-given as [low, high], profiled: the fit is repeated at NUGGET_PROFILE log-spaced values and the one of
-largest ℓ kept.
+given as [low, high], estimated: the fit above is run at NUGGET_PROFILE log-spaced values of ν (the
+profile: OpenTURNS cannot resolve a ν spanning decades on its [0, 1] scale), each polished in log θ and
+log ν together within [low, high], and the one of largest ℓ kept. The profile's ends start the two
+modes the likelihood of scattered data has (interpolate the scatter with short lengths, or take it as
+noise: docs/surrogate.md, *Branch scatter*); the starts are fixed by the settings, so the fit is
+deterministic.
 
 Data whose spread is below CONSTANT_RTOL × max|y| (round-off; or × the output's scale over the campaign,
 when the caller gives it) give the constant model β = mean(y), σ = 0
@@ -33,14 +37,15 @@ import logging
 
 import numpy as np
 
-from .gp import GPModel
+from .gp import GPModel, _squared_differences
 from .settings import DOMAIN_WIDTH, check_settings
 
 log = logging.getLogger(__package__)  # one logger for the package: ringdamper.campaign.kriging
 
 MATCH_RTOL = 1.0e-6  # allowed numpy/OpenTURNS prediction gap, fraction of the data spread
 AMPLITUDE_RTOL = 1.0e-6  # OpenTURNS' amplitude vs the closed-form ML estimate at its θ, ν
-NUGGET_PROFILE = 5  # log-spaced nugget values tried when the nugget is estimated
+COINCIDENT = 1.0e-9  # a check point this close to a training input (κ units) coincides with it
+NUGGET_PROFILE = 5  # log-spaced starting nugget values when the nugget is estimated
 # data whose spread is below this times max|y| (round-off) are taken as constant: no process is fitted
 CONSTANT_RTOL = 1.0e-12
 
@@ -66,7 +71,10 @@ def _starting_points(lower: np.ndarray, upper: np.ndarray, n: int, seed: int):
     return ot.Sample(theta)
 
 
-def _fit_ot_fixed_nugget(x: np.ndarray, y: np.ndarray, s: dict, nugget: float):
+def _fit_ot_from_nugget(x: np.ndarray, y: np.ndarray, s: dict, nugget: float):
+    """OpenTURNS' multistart fit of θ at the nugget ``nugget``, then the polish of :func:`_polish` (θ, and ν
+    too when it is estimated: within the ``surrogate.nugget`` interval); the polished parameters go back
+    to OpenTURNS with fixed parameters and the ML amplitude σ̂."""
     import openturns as ot
 
     dim = x.shape[1]
@@ -82,10 +90,13 @@ def _fit_ot_fixed_nugget(x: np.ndarray, y: np.ndarray, s: dict, nugget: float):
     fitter.run()
     result = fitter.getResult()
     start = np.clip(np.array(result.getCovarianceModel().getScale()), lower, upper)
-    scale, sigma = _polish_scale(x, y, s["kernel"], nugget, start, lower, upper)
-    if scale is None:
+    nugget_bounds = s["nugget"] if isinstance(s["nugget"], tuple) else None
+    polished = _polish(x, y, s["kernel"], start, nugget, lower, upper, nugget_bounds)
+    if polished is None:
         return result
+    scale, nugget, sigma = polished
     cov.setScale(scale)
+    cov.setNuggetFactor(nugget)
     cov.setAmplitude([sigma])
     fixed = ot.GaussianProcessFitter(x, y[:, None], cov, ot.ConstantBasisFactory(dim).build())
     fixed.setOptimizeParameters(False)
@@ -93,35 +104,42 @@ def _fit_ot_fixed_nugget(x: np.ndarray, y: np.ndarray, s: dict, nugget: float):
     return fixed.getResult()
 
 
-def _polish_scale(x, y, kernel: str, nugget: float, start, lower, upper):
-    """(θ, σ̂) maximising ℓ by L-BFGS-B in log θ from ``start`` within [lower, upper], or (None, None)
-    if ℓ does not rise above its value at ``start`` (by more than 1e-9 |ℓ|)."""
+def _polish(x, y, kernel: str, scale, nugget: float, lower, upper, nugget_bounds=None):
+    """(θ, ν, σ̂) maximising ℓ by L-BFGS-B in log θ (and log ν within ``nugget_bounds`` when given; ν
+    fixed otherwise) from (``scale``, ``nugget``), θ within [lower, upper]; None if ℓ does not rise above
+    its value at the start (by more than 1e-9 |ℓ|)."""
     from scipy.optimize import minimize
 
-    def negative_ll(log_scale):
+    def negative_ll(p):
+        nu = float(np.exp(p[-1])) if nugget_bounds is not None else nugget
         try:
-            return -GPModel(kernel, np.exp(log_scale), 1.0, nugget, 0.0, x, y).log_likelihood()
+            return -GPModel(kernel, np.exp(p[:len(scale)]), 1.0, nu, 0.0, x, y).log_likelihood()
         except np.linalg.LinAlgError:
             return np.finfo(float).max
 
-    f0 = negative_ll(np.log(start))
-    res = minimize(negative_ll, np.log(start), method="L-BFGS-B", bounds=list(zip(np.log(lower), np.log(upper))))
+    start, bounds = np.log(scale), list(zip(np.log(lower), np.log(upper)))
+    if nugget_bounds is not None:
+        start, bounds = np.append(start, np.log(nugget)), bounds + [tuple(np.log(nugget_bounds))]
+    f0 = negative_ll(start)
+    res = minimize(negative_ll, start, method="L-BFGS-B", bounds=bounds)
     if not res.fun < f0 - 1e-9 * abs(f0):
-        return None, None
-    scale = np.clip(np.exp(res.x), lower, upper)
-    return scale, GPModel(kernel, scale, 1.0, nugget, 0.0, x, y).ml_sigma()
+        return None
+    theta = np.clip(np.exp(res.x[:len(scale)]), lower, upper)
+    nu = float(np.clip(np.exp(res.x[-1]), *nugget_bounds)) if nugget_bounds is not None else nugget
+    return theta, nu, GPModel(kernel, theta, 1.0, nu, 0.0, x, y).ml_sigma()
 
 
 def fit_ot(x: np.ndarray, y: np.ndarray, settings: dict | None = None):
     """Maximum-likelihood ordinary Kriging with OpenTURNS: the ``GaussianProcessFitterResult``.
 
-    An estimated nugget (``nugget: [low, high]``) is profiled: the fit is repeated at NUGGET_PROFILE
-    log-spaced values and the one of largest likelihood kept (OpenTURNS' optimiser works on the
-    parameters linearly scaled to [0, 1], where it cannot resolve a nugget spanning decades)."""
+    An estimated nugget (``nugget: [low, high]``) is profiled and polished: the fit starts at NUGGET_PROFILE
+    log-spaced values, θ and ν are polished together from each, and the one of largest likelihood is kept
+    (OpenTURNS' optimiser works on the parameters linearly scaled to [0, 1], where it cannot resolve a
+    nugget spanning decades)."""
     s = check_settings(settings)
     x, y = np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(y, dtype=float)  # layout-free sums
     nuggets = np.geomspace(*s["nugget"], NUGGET_PROFILE) if isinstance(s["nugget"], tuple) else [s["nugget"]]
-    results = [_fit_ot_fixed_nugget(x, y, s, float(nu)) for nu in nuggets]
+    results = [_fit_ot_from_nugget(x, y, s, float(nu)) for nu in nuggets]
     return max(results, key=lambda r: _model(r, s["kernel"], x, y).log_likelihood())
 
 
@@ -172,12 +190,18 @@ def fit_model(x: np.ndarray, y: np.ndarray, settings: dict | None = None, name: 
 def _check_against_ot(model: GPModel, fitter_result, name: str) -> None:
     """Warn when the numpy predictor departs from OpenTURNS' GaussianProcessRegression (at the midpoints
     of successive training points) by more than MATCH_RTOL of the data spread: R is then too
-    ill-conditioned (OpenTURNS regularises its Cholesky factor silently); a nugget cures it."""
+    ill-conditioned (OpenTURNS regularises its Cholesky factor silently); a nugget cures it. Midpoints
+    that coincide with a training input are left out: there OpenTURNS adds σ²ν to the cross-covariance
+    and returns the noisy observation (:mod:`.gp`), a gap of order ν, not of conditioning (a factorial
+    design has such midpoints)."""
     import openturns as ot
 
     algo = ot.GaussianProcessRegression(fitter_result)
     algo.run()
     mid = 0.5 * (model.x[:-1] + model.x[1:])
+    mid = mid[np.min(np.sum(_squared_differences(mid, model.x), axis=0), axis=1) > COINCIDENT ** 2]
+    if not len(mid):
+        return
     ours, _ = model.predict(mid, with_std=False)
     gap = np.max(np.abs(ours - np.asarray(algo.getResult().getMetaModel()(mid)).ravel())) / np.ptp(model.y)
     if gap > MATCH_RTOL:

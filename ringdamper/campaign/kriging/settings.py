@@ -6,10 +6,11 @@ Scale bounds are tied to the width w = 2 of the κ domain: θ_k ∈ scale_bounds
 a smooth response keeps rising along a flat ridge (θ, σ → ∞ together) while R becomes ill-conditioned:
 the predictive variance collapses and round-off enters the interpolation, for no gain in accuracy
 (docs/surrogate.md, *Scale bounds*). The squared-exponential kernel is worse conditioned still; give it a
-nugget (~1e-8) if used.
+nugget (~1e-8) if used. The campaign's configuration raises the lower bound to 0.3 and estimates the
+nugget: its top amplitudes scatter between solution branches (docs/surrogate.md, *Branch scatter*).
 
 The nugget factor ν is fixed (default 1e-12, OpenTURNS' own round-off floor) or, given as [low, high],
-estimated by maximum likelihood (profiled, see :mod:`.fit`).
+estimated by maximum likelihood (profiled and polished with θ, see :mod:`.fit`).
 
 ``transform`` names, per output, the scale the Gaussian process models (:mod:`.transform`): ``log``
 (z = ln(y + c), c = ``log_offset`` × the model's largest training value) for the outputs that physics

@@ -150,6 +150,20 @@ def test_an_error_on_a_plateau_settles_and_a_shrinking_one_does_not():
     assert not decide(flat, moving, 48, adaptive)["stop"]
 
 
+def test_an_error_that_rises_above_its_plateau_is_not_settled():
+    """The rings of the last two rounds raised zeta's error by 20 % over its best earlier value (they
+    found responses the models had missed): not settled, the loop goes on; a rise within the plateau's
+    10 % is settled, and so is the error once it has come back into the band."""
+    adaptive = {**CONFIG["sampling"]["adaptive"], "loo_tolerance": 0.3, "loo_plateau": 0.1, "stable_rounds": 2}
+    history = [{"zeta": 0.33}, {"zeta": 0.35}, {"zeta": 0.396}]
+    assert settled_outputs(history, adaptive) == {"zeta": None}
+    optima = [{"kappa": [1.0, -1.0, -1.0], "zeta_max": 2e-3}] * 3
+    assert not decide(history, optima, 42, adaptive)["stop"]
+    assert settled_outputs(history[:-1] + [{"zeta": 0.36}], adaptive) == {"zeta": "plateau"}
+    assert settled_outputs(history + [{"zeta": 0.36}, {"zeta": 0.34}], adaptive) == {"zeta": "plateau"}
+    assert decide(history + [{"zeta": 0.36}, {"zeta": 0.34}], optima + optima[:2], 54, adaptive)["stop"]
+
+
 def test_a_failed_ring_is_excluded_and_a_round_of_failures_is_an_error_naming_them(tmp_path):
     samples = make_samples(CONFIG["sampling"])
     training = samples[samples.split == "training"]

@@ -1,10 +1,12 @@
 """The stop decision of a round, on training-side evidence only (the validation rings never enter):
 
 * accuracy: every output's normalised leave-one-out error ε_o (:func:`.model.normalised_loo`) is
-  settled: at most ``loo_tolerance``, or on a plateau, where ``stable_rounds`` more rounds improved it
-  by less than the fraction ``loo_plateau`` of the best earlier value,
-  ``ε_o(k) > (1 - loo_plateau) · min_{j ≤ k - stable_rounds} ε_o(j)`` (``loo_plateau = 0`` turns the
-  plateau off);
+  settled: at most ``loo_tolerance``, or on a plateau, where ``stable_rounds`` more rounds moved it by
+  less than the fraction ``loo_plateau`` of the best earlier value, either way,
+  ``(1 - loo_plateau) · m < ε_o(k) ≤ (1 + loo_plateau) · m`` with ``m = min_{j ≤ k - stable_rounds} ε_o(j)``
+  (``loo_plateau = 0`` turns the plateau off). An error that rose above the band is not settled: the
+  rings added since found responses the earlier models had not seen (an adaptive design's rings sit
+  where the response is hardest), and the loop goes on until the models have caught up with them;
 * stability: over the last ``stable_rounds`` rounds the predicted optimum moved by at most
   ``kappa_tolerance`` in every kappa_i and its predicted zeta_max by at most ``zeta_tolerance`` relative.
 
@@ -41,7 +43,7 @@ def settled_outputs(loo_history: list[dict], adaptive: dict) -> dict:
         earlier = [r[name] for r in loo_history[:-lag] if np.isfinite(r[name])]
         if np.isnan(e) or e <= adaptive["loo_tolerance"]:
             out[name] = "tolerance"
-        elif plateau > 0 and earlier and e > (1 - plateau) * min(earlier):
+        elif plateau > 0 and earlier and (1 - plateau) * min(earlier) < e <= (1 + plateau) * min(earlier):
             out[name] = "plateau"
         else:
             out[name] = None

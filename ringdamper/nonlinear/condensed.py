@@ -405,10 +405,14 @@ class CoreJacobian:
             self.rotation.apply(out, v)
         return out
 
-    def toarray(self) -> np.ndarray:
+    def toarray(self, out: np.ndarray | None = None) -> np.ndarray:
+        """The matrix (Fortran order, :func:`ringdamper.nonlinear.jacobian.dense`), in ``out`` if
+        given (e.g. the core block of a bordered matrix)."""
         m = self.model
         p, kc, active = m.p, self.kc, self.active
-        J = np.zeros(self.shape)
+        J = np.zeros(self.shape, order="F") if out is None else out
+        if out is not None:
+            J[...] = 0.0
         J[np.arange(m.n_d), np.arange(m.n_d)] = 1.0
         for h in range(m.H + 1):
             z, S, Cs, sl, rows = self.z[h], m.S[h], m.Cset[h], m.eta_slices[h], m._rows(h)

@@ -4,12 +4,18 @@
 
 with structural modal damping ``C`` (ratio ζ_s, or the structure's ``C``), condensed as in
 :mod:`ringdamper.nonlinear.condensed` (ξ = 0). Unknowns ``z = [y, ω]``.
+
+The Jacobian is returned as an operator (:class:`ringdamper.nonlinear.condensed.CoreJacobian`
+bordered by the ω column, :mod:`ringdamper.nonlinear.jacobian`), as the EPMC's: Newton forms it
+when it factorises, and the continuation's tangents are solved by GMRES on the corrector's last LU
+(:class:`ringdamper.nonlinear.krylov.LaggedSolver`) instead of a factorisation each.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from ringdamper.nonlinear.condensed import CondensedHBM
+from ringdamper.nonlinear.jacobian import bordered
 
 
 class ForcedProblem:
@@ -22,14 +28,14 @@ class ForcedProblem:
 
     def fun(self, z: np.ndarray, jacobian: bool = True):
         ev = self.model.evaluate(z[:-1], z[-1], 0.0, jacobian)
-        J = np.hstack([ev.take_jacobian(), ev.dr_domega[:, None]]) if jacobian else None
+        J = bordered(ev.J, ev.dr_domega) if jacobian else None
         return ev.r, J, ev.trivial, self.model.n_core, ev
 
     def at_frequency(self, omega: float):
         """Residual of ``y`` alone at fixed ω (square)."""
         def fun(y, jacobian=True):
             ev = self.model.evaluate(y, omega, 0.0, jacobian)
-            return ev.r, ev.take_jacobian(), ev.trivial, self.model.n_core, ev
+            return ev.r, ev.J, ev.trivial, self.model.n_core, ev
         return fun
 
     def scale(self, z: np.ndarray) -> np.ndarray:

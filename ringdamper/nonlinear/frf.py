@@ -37,6 +37,7 @@ from ringdamper.nonlinear.continuation import StepControl, arclength
 from ringdamper.nonlinear.forced import ForcedProblem
 from ringdamper.nonlinear.fourier import default_nt
 from ringdamper.nonlinear.friction import FrictionContacts
+from ringdamper.nonlinear.jacobian import bordered, dense
 from ringdamper.nonlinear.newton import Factorization, newton
 from ringdamper.nonlinear.response import response_harmonics, time_peak
 from ringdamper.nonlinear.stability import hill_exponents, is_stable, modal_hill_matrices
@@ -236,19 +237,19 @@ def _refine_peak(frf: FRF, i: int, k: int, rtol: float) -> Peak | None:
         return None
     cache = {}
     _, J, trivial, n_core, _ = problem.fun(zi, True)
-    start = Factorization(np.vstack([J, plane]), trivial, n_core)   # chord start of every solve
+    start = Factorization(dense(bordered(J, rows=plane)), trivial, n_core, overwrite=True)   # chord start
 
     def solve(sigma):
         j = i - 1 if sigma < 0 else i + 1
         w = sigma / sig[0 if sigma < 0 else 1]
         guess = zi + w * (frf.points[j].z - zi)
 
-        def bordered(z, jac):
+        def on_plane(z, jac):
             r, J, trivial, n_core, ev = problem.fun(z, jac)
-            Jb = np.vstack([J, plane]) if jac else None
+            Jb = bordered(J, rows=plane) if jac else None
             return np.r_[r, plane @ (z - zi) - sigma], Jb, trivial, n_core, ev
 
-        res = newton(bordered, guess, lambda _: scale, frf.tol, frf.max_iter, factorization=start)
+        res = newton(on_plane, guess, lambda _: scale, frf.tol, frf.max_iter, factorization=start)
         cache[sigma] = res
         return res
 

@@ -2,11 +2,11 @@
 
 A problem's ``fun(z, jacobian)`` (:func:`ringdamper.nonlinear.newton.newton`) may return its Jacobian
 as a dense array or as an operator with ``shape``, ``matvec(v)`` (the product ``J v``, without
-forming ``J``) and ``toarray()`` (``J`` formed on demand). An operator lets the Newton solve with a
-lagged factorisation as preconditioner (:class:`ringdamper.nonlinear.krylov.LaggedSolver`) and
-form ``J`` only when that no longer converges. The continuation borders Jacobians with extra
-columns (``∂r/∂s``) and rows (arc-length hyperplane, amplitude and phase conditions):
-:func:`bordered` does that for both kinds.
+forming ``J``) and ``toarray(out=None)`` (``J`` formed on demand, into ``out`` if given). An
+operator lets the Newton solve with a lagged factorisation as preconditioner
+(:class:`ringdamper.nonlinear.krylov.LaggedSolver`) and form ``J`` only when that no longer converges.
+The continuation borders Jacobians with extra columns (``∂r/∂s``) and rows (arc-length hyperplane,
+amplitude and phase conditions): :func:`bordered` does that for both kinds.
 """
 from __future__ import annotations
 
@@ -19,8 +19,18 @@ def is_operator(J) -> bool:
 
 
 def dense(J) -> np.ndarray:
-    """The Jacobian as a dense array."""
+    """The Jacobian as a dense array: for an operator a new one in Fortran order, which LAPACK's LU
+    factorises in place when the caller lets it overwrite the matrix (a C-ordered one is copied
+    first: 17 MB at n = 1480); ``J`` itself for an array."""
     return J.toarray() if is_operator(J) else J
+
+
+def fill(J, out: np.ndarray) -> None:
+    """Write the Jacobian into ``out`` (a view of a larger matrix, so bordering copies nothing)."""
+    if is_operator(J):
+        J.toarray(out=out)
+    else:
+        out[...] = J
 
 
 def apply(J, v: np.ndarray) -> np.ndarray:
@@ -41,8 +51,13 @@ class Bordered:
         n = self.A.shape[1]
         return np.r_[apply(self.A, v[:n]) + self.columns @ v[n:], self.rows @ v]
 
-    def toarray(self) -> np.ndarray:
-        return np.vstack([np.hstack([dense(self.A), self.columns]), self.rows])
+    def toarray(self, out: np.ndarray | None = None) -> np.ndarray:
+        m, n = self.A.shape
+        out = np.empty(self.shape, order="F") if out is None else out
+        fill(self.A, out[:m, :n])
+        out[:m, n:] = self.columns
+        out[m:] = self.rows
+        return out
 
 
 def bordered(J, columns=None, rows=None):

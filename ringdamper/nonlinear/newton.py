@@ -31,9 +31,10 @@ from ringdamper.nonlinear.krylov import LaggedSolver
 
 class Factorization:
     """LU of ``J`` after eliminating the trivial unknowns ``T`` (columns ``e_i`` in the first
-    ``n_core`` rows): ``x_T = b_T − J[T, N] x_N`` and the Schur system on the other unknowns."""
+    ``n_core`` rows): ``x_T = b_T − J[T, N] x_N`` and the Schur system on the other unknowns.
+    ``overwrite``: ``J`` is a temporary the LU may overwrite (no copy of the matrix)."""
 
-    def __init__(self, J: np.ndarray, trivial: np.ndarray | None, n_core: int):
+    def __init__(self, J: np.ndarray, trivial: np.ndarray | None, n_core: int, overwrite: bool = False):
         n = self.n = J.shape[0]
         T = np.zeros(n, bool) if trivial is None else np.r_[trivial, np.zeros(n - trivial.size, bool)]
         self.T, self.N = np.flatnonzero(T), np.flatnonzero(~T)
@@ -41,10 +42,10 @@ class Factorization:
         self.JTN = J[np.ix_(self.T, self.N)]
         self.JXT = J[np.ix_(extra, self.T)]
         self.extra_pos = np.searchsorted(self.N, extra)
-        A = J[np.ix_(self.N, self.N)] if self.T.size else J
+        A = J.T[np.ix_(self.N, self.N)].T if self.T.size else J        # Fortran order: LU in place
         if self.T.size and extra.size:
             A[self.extra_pos] -= self.JXT @ self.JTN
-        self.lu = sla.lu_factor(A, check_finite=False, overwrite_a=A is not J)
+        self.lu = sla.lu_factor(A, check_finite=False, overwrite_a=overwrite or A is not J)
 
     @property
     def factorization(self) -> "Factorization":
@@ -68,7 +69,7 @@ def linear_solver(J, trivial: np.ndarray | None, n_core: int, previous=None,
     :data:`ringdamper.nonlinear.krylov.MIN_SIZE` unknowns (:class:`ringdamper.nonlinear.krylov.LaggedSolver`;
     ``weights``: 1/scale of the unknowns), otherwise the :class:`Factorization` of ``J``."""
     def factorize(A):
-        return Factorization(A, trivial, n_core)
+        return Factorization(A, trivial, n_core, overwrite=is_operator(J))
 
     lagged = is_operator(J) and J.shape[0] >= krylov.MIN_SIZE
     if lagged and previous is not None and previous.factorization.n == J.shape[0]:
@@ -135,7 +136,7 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_
             if not (np.all(np.isfinite(r)) and (is_operator(J) or np.all(np.isfinite(J)))):
                 return NewtonResult(z, False, it, payload, None, "non-finite residual or Jacobian",
                                     n_jac)
-            fac = Factorization(dense(J), trivial, n_core)
+            fac = Factorization(dense(J), trivial, n_core, overwrite=is_operator(J))
             n_jac += 1
             dz = None
         payload = ev[4]

@@ -12,7 +12,8 @@ from ringdamper.nonlinear.epmc import EPMCProblem
 from ringdamper.nonlinear.forced import ForcedProblem
 from ringdamper.nonlinear.fourier import Fourier
 from ringdamper.nonlinear.friction import FrictionContacts, contact_aft
-from ringdamper.nonlinear.jacobian import dense, is_operator
+from ringdamper.nonlinear.jacobian import bordered, dense, is_operator
+from ringdamper.nonlinear.newton import Factorization
 
 from .systems import cyclic_structure, free_body, multi_dof
 
@@ -102,6 +103,30 @@ def test_forced_residual_jacobian_cyclic():
     z = np.r_[_state(model, 4e-4, rng), 90.0]
     prob = ForcedProblem(model)
     _check_problem(lambda x: prob.fun(x)[:2], z, prob.scale(z))
+
+
+def test_bordered_jacobian_is_formed_once_and_factorised_in_place():
+    """The forced problem's Jacobian is an operator; bordered twice (ω column, then a hyperplane
+    row, as the peak refinement does) it forms the same matrix as stacking the blocks, in Fortran
+    order, and an overwriting LU factorises that very array (no copy) to the same solution."""
+    st, c, _ = cyclic_structure(H=3)
+    damping = [st.modal(h).damping(0.01) for h in range(4)]
+    model = CondensedHBM(st, c, 3, 36, damping=damping, forced=True, gamma=5.0)
+    rng = np.random.default_rng(8)
+    z = np.r_[_state(model, 4e-4, rng), 90.0]
+    r, J, trivial, n_core, ev = ForcedProblem(model).fun(z)
+    assert is_operator(J)
+    plane = rng.standard_normal(z.size)
+    core = model.evaluate(z[:-1], z[-1], 0.0).J.toarray()
+    stacked = np.vstack([np.hstack([core, ev.dr_domega[:, None]]), plane])
+    A = dense(bordered(J, rows=plane))
+    assert A.flags.f_contiguous and np.array_equal(A, stacked)
+    b = rng.standard_normal(z.size)
+    copy = Factorization(stacked, trivial, n_core)
+    in_place = Factorization(A, trivial, n_core, overwrite=True)
+    assert np.array_equal(stacked, np.vstack([np.hstack([core, ev.dr_domega[:, None]]), plane]))
+    assert not trivial.any() and np.shares_memory(in_place.lu[0], A)
+    assert np.allclose(in_place.solve(b), copy.solve(b), rtol=1e-12, atol=0.0)
 
 
 @pytest.mark.parametrize("amp", [1e-5, 5e-3])                 # stuck: DC held; slipping: gauge

@@ -20,9 +20,12 @@ class Operator:
     def matvec(self, v):
         return self.A @ v
 
-    def toarray(self):
+    def toarray(self, out=None):
         self.formed += 1
-        return self.A.copy()
+        if out is None:
+            return self.A.copy()
+        out[...] = self.A
+        return out
 
 
 def _systems(n, change, rank, seed=0):

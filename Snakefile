@@ -34,6 +34,10 @@ include: "workflow/rules/report.smk"
 rule all:
     input:
         f"{RESULTS}/samples.csv",
+        # the rings known at parse time (the adaptive design's initial and validation rings) by name, so
+        # that their jobs are in the DAG from the start and fill the cores while the rounds fit; the
+        # input functions below resolve the rounds' rings only once the last round has run
+        [f"{RESULTS}/geometry/{gid}/dnnm.nc" for gid in geometry_ids()],
         campaign_files("mesh.vtu"),
         campaign_files("dnnm.nc"),
         f"{RESULTS}/modal/resonance.yaml",

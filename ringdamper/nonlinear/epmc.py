@@ -150,7 +150,7 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
          pole_band: float = 0.1, tol: float = 1e-8, max_iter: int = 20,
          steps: StepControl | None = None, gauge_reference: np.ndarray | None = None,
          alpha_start: float | None = None, drift_tol: float = 1e-8,
-         stuck_shortcut: bool = True) -> Backbone:
+         stuck_shortcut: bool = True, max_arc_points: int | None = None) -> Backbone:
     """dNNM backbone of one mode over the increasing modal-amplitude grid ``alpha``.
 
     ``mode``/``omega_target``: which linearised stuck mode of harmonic 1 to follow (index in
@@ -168,6 +168,8 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
     continuation then ran out of points at 0.99 of the limit and converged at 0.9 or below).
     ``drift_tol``: relative size of the dropped rigid-body equilibrium above which a converged
     point gets status DRIFT.
+    ``max_arc_points``: arc-length points allowed past a fold in α (default that of
+    :func:`ringdamper.nonlinear.continuation.natural_then_arclength`).
     """
     t0 = time.perf_counter()
     alpha = np.asarray(alpha, float)
@@ -195,7 +197,7 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
         run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log(rest), problem.scale,
                                      steps, tol, max_iter, accept=problem.accept,
                                      s_start=np.log(alpha_start), on_failure=problem.on_failure,
-                                     jump_mask=problem.jump_mask())
+                                     jump_mask=problem.jump_mask(), max_points=max_arc_points)
     return _collect(_joined(stuck, run, np.log(alpha)), model, alpha, problem, time.perf_counter() - t0,
                     window)
 

@@ -29,6 +29,13 @@ from ringdamper.status import CHAIN_FAILED, Status
 
 log = logging.getLogger(__name__)
 
+#: arc-length points a ring's continuation may spend past a fold in α (the driver's default is 400).
+#: Measured on the 81 rings of an adaptive campaign (docs/nonlinear_core.md §4.1): 13 went past a fold,
+#: they used 1-84 points, and the latest grid value any of them solved came 65 points into the arc; the
+#: one ring that used 400 (210 s, 21 times the median) solved its last grid value at the 4th and spent
+#: the 395 others in the lift-off stretch without reaching the next.
+ARC_POINTS = 100
+
 
 def structure_from_reduced(reduced: xr.Dataset, n_harmonics: int, field: str = "dnnm.n_harmonics") -> Structure:
     """Per-harmonic modal data of ``reduced.nc`` as a cyclic :class:`Structure` (h = 0..H); ``field``
@@ -88,7 +95,7 @@ def solve_backbone(reduced: xr.Dataset, static: xr.Dataset, config: dict, target
     contacts = contacts_from_static(static, config["contact"], cfg["friction_law"])
     omega_stuck = target_stuck_frequency(structure, contacts, target_hz)
     backbone = epmc(structure, contacts, alpha, H=n_harmonics, nt=nt, omega_target=omega_stuck,
-                    tol=cfg.get("continuation_tolerance", 1e-8))
+                    tol=cfg.get("continuation_tolerance", 1e-8), max_arc_points=ARC_POINTS)
     return backbone, contacts, eebm(backbone, zeta_s=cfg["structural_damping_ratio"]), omega_stuck
 
 

@@ -86,6 +86,22 @@ def test_backbone_does_not_depend_on_the_continuation_path():
     assert np.max(a.zeta) > 1e-2                                    # friction did act
 
 
+def test_arc_points_past_a_fold_are_bounded():
+    """The fold of the free body below needs the arc-length part (``bb.branch`` folds back); allowed
+    fewer arc-length points than it takes to reach every grid value, the continuation stops there, says
+    so, and keeps every value it reached as the unbounded run has it."""
+    from .systems import free_body
+
+    st, c = free_body(H=3, normal_coupling=0.3)
+    alpha = 1e-3 * np.logspace(-1.5, 0.25, 8)
+    full = epmc(st, c, alpha, H=3, nt=64, tol=1e-12)
+    short = epmc(st, c, alpha, H=3, nt=64, tol=1e-12, max_arc_points=3)
+    reached = short.status != Status.NO_CONVERGENCE
+    assert not reached.all() and "3 points reached" in short.reason[np.flatnonzero(~reached)[0]]
+    kept = np.isin(short.status, (Status.CONVERGED, Status.DRIFT))
+    assert kept.any() and np.array_equal(short.omega[kept], full.omega[kept])
+
+
 def test_fold_in_alpha_is_passed_by_arc_length():
     """A free mass on an oscillator whose normal load follows the motion (``free_body`` with
     normal coupling): past the loss of stick the backbone folds in α (α rises, falls back by

@@ -92,13 +92,6 @@ class CoreEval:
     drift: np.ndarray
     gauge: np.ndarray
 
-    def take_jacobian(self) -> np.ndarray | None:
-        """The Jacobian as a dense matrix, released from this evaluation: evaluations are kept
-        as the payload of every accepted continuation point, and a dense n_core² Jacobian each
-        (18 MB on a real ring at H = 3) would add up to gigabytes."""
-        J, self.J = self.J, None
-        return None if J is None else J.toarray()
-
 
 class CondensedHBM:
     """Condensed HBM of one structure, contact set and harmonic truncation.
@@ -410,8 +403,10 @@ class CoreJacobian:
         given (e.g. the core block of a bordered matrix)."""
         m = self.model
         p, kc, active = m.p, self.kc, self.active
-        J = np.zeros(self.shape, order="F") if out is None else out
-        if out is not None:
+        if out is None:
+            J = np.zeros(self.shape, order="F")
+        else:
+            J = out
             J[...] = 0.0
         J[np.arange(m.n_d), np.arange(m.n_d)] = 1.0
         for h in range(m.H + 1):

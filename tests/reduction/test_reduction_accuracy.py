@@ -111,7 +111,9 @@ def test_constraint_modes_by_interior_blocks_match_the_dense_formulas(small_quad
     M_bb = M[b][:, b].toarray() + Mib.T @ psi + psi.T @ Mib + psi.T @ Mii @ psi
     M_bf = (Mib.T + psi.T @ Mii) @ cb.fixed_interface_modes
     assert np.abs(cb.K[:nb, :nb] - K_bb).max() <= 1e-10 * np.abs(K_bb).max()
-    assert np.abs(cb.M[:nb, :nb] - M_bb).max() <= 1e-10 * np.abs(M_bb).max()
+    # M_bb's reference sums four products of the dense-solve Psi: under OpenBLAS's Haswell kernel its
+    # own rounding reaches 1.0e-10 of max |M_bb| (7.4e-12 of 0.073); a wrong block is off by O(1)
+    assert np.abs(cb.M[:nb, :nb] - M_bb).max() <= 1e-9 * np.abs(M_bb).max()
     assert np.abs(cb.M[:nb, nb:] - M_bf).max() <= 1e-10 * np.abs(M_bf).max()
     ring = np.repeat(model.node_body == BODY_RING, 3)[i]
     blocks = interior_blocks(*(A.tocsr() for A in (K[i][:, i], M[i][:, i], K[i][:, b])))

@@ -8,9 +8,10 @@ R = [ρ_θ(xᵢ - xⱼ)] + νI (kernels in :mod:`.gp`); θ maximises the concent
 
 by Cobyla from ``n_starts`` starting points (a seeded log-uniform Latin hypercube over the bounds of
 :mod:`.settings`, OpenTURNS ``MultiStart``), then polished by L-BFGS-B in log θ (numpy ℓ of
-:meth:`.gp.GPModel.log_likelihood`, equal to OpenTURNS'): OpenTURNS' solver works on θ mapped linearly
-onto [0, 1], where the short lengths a response with jumps asks for (θ ∈ [0.1, 0.3] is 2 % of the
-interval) are poorly resolved; it stopped on the lower bound θ₁ = 0.1 where ℓ rises by 1-5 at θ₁ ≈ 0.2
+:meth:`.gp.GPModel.log_likelihood`, equal to OpenTURNS', climbing its analytic gradient
+:func:`.gp.log_likelihood_gradient`): OpenTURNS' solver works on θ mapped linearly onto [0, 1], where
+the short lengths a response with jumps asks for (θ ∈ [0.1, 0.3] is 2 % of the interval) are poorly
+resolved; it stopped on the lower bound θ₁ = 0.1 where ℓ rises by 1-5 at θ₁ ≈ 0.2
 (docs/surrogate.md, *Responses with jumps*). A polished θ is handed back to OpenTURNS (fixed parameters,
 amplitude σ̂) so that the fitted result, and the cross-check below, stay OpenTURNS'. ν is fixed or,
 given as [low, high], estimated: the fit above is run at NUGGET_PROFILE log-spaced values of ν (the
@@ -37,7 +38,7 @@ import logging
 
 import numpy as np
 
-from .gp import GPModel, _squared_differences
+from .gp import GPModel, _squared_differences, log_likelihood_gradient
 from .settings import DOMAIN_WIDTH, check_settings
 
 log = logging.getLogger(__package__)  # one logger for the package: ringdamper.campaign.kriging
@@ -106,26 +107,30 @@ def _fit_ot_from_nugget(x: np.ndarray, y: np.ndarray, s: dict, nugget: float):
 
 def _polish(x, y, kernel: str, scale, nugget: float, lower, upper, nugget_bounds=None):
     """(θ, ν, σ̂) maximising ℓ by L-BFGS-B in log θ (and log ν within ``nugget_bounds`` when given; ν
-    fixed otherwise) from (``scale``, ``nugget``), θ within [lower, upper]; None if ℓ does not rise above
-    its value at the start (by more than 1e-9 |ℓ|)."""
+    fixed otherwise) from (``scale``, ``nugget``), θ within [lower, upper], with the analytic gradient of
+    :func:`.gp.log_likelihood_gradient`; None if ℓ does not rise above its value at the start (by more
+    than 1e-9 |ℓ|)."""
     from scipy.optimize import minimize
 
+    d, free_nugget = len(scale), nugget_bounds is not None
+
     def negative_ll(p):
-        nu = float(np.exp(p[-1])) if nugget_bounds is not None else nugget
+        nu = float(np.exp(p[-1])) if free_nugget else nugget
         try:
-            return -GPModel(kernel, np.exp(p[:len(scale)]), 1.0, nu, 0.0, x, y).log_likelihood()
+            ell, grad = log_likelihood_gradient(kernel, x, y, np.exp(p[:d]), nu)
         except np.linalg.LinAlgError:
-            return np.finfo(float).max
+            return np.finfo(float).max, np.zeros_like(p)
+        return -ell, -(grad if free_nugget else grad[:d])
 
     start, bounds = np.log(scale), list(zip(np.log(lower), np.log(upper)))
-    if nugget_bounds is not None:
+    if free_nugget:
         start, bounds = np.append(start, np.log(nugget)), bounds + [tuple(np.log(nugget_bounds))]
-    f0 = negative_ll(start)
-    res = minimize(negative_ll, start, method="L-BFGS-B", bounds=bounds)
+    f0 = negative_ll(start)[0]
+    res = minimize(negative_ll, start, method="L-BFGS-B", jac=True, bounds=bounds)
     if not res.fun < f0 - 1e-9 * abs(f0):
         return None
-    theta = np.clip(np.exp(res.x[:len(scale)]), lower, upper)
-    nu = float(np.clip(np.exp(res.x[-1]), *nugget_bounds)) if nugget_bounds is not None else nugget
+    theta = np.clip(np.exp(res.x[:d]), lower, upper)
+    nu = float(np.clip(np.exp(res.x[-1]), *nugget_bounds)) if free_nugget else nugget
     return theta, nu, GPModel(kernel, theta, 1.0, nu, 0.0, x, y).ml_sigma()
 
 

@@ -183,6 +183,54 @@ class GPModel:
         return float((t[k - 1] / SIGMA_BAND) ** 2)
 
 
+def _correlation_and_log_scale_derivatives(kernel: str, sq: np.ndarray, scale: np.ndarray):
+    """ρ_θ (N, N) and ∂ρ/∂log θ_k (d, N, N) from the squared differences ``sq`` (d, N, N):
+    with d² = Σ_k Δ_k²/θ_k², ∂d²/∂log θ_k = −2Δ_k²/θ_k², so ∂ρ/∂log θ_k = −2 (dρ/dd²) Δ_k²/θ_k², where
+    −2 dρ/dd² = (5/3)(1 + √5 d) e^{−√5 d} (Matérn 5/2) or e^{−d²/2} (squared exponential)."""
+    weighted = sq / scale[:, None, None] ** 2
+    d2 = weighted.sum(axis=0)
+    if kernel == "matern52":
+        d = np.sqrt(5.0 * d2)
+        decay = np.exp(-d)
+        rho, slope = (1.0 + d + d * d / 3.0) * decay, (5.0 / 3.0) * (1.0 + d) * decay
+    elif kernel == "squared_exponential":
+        rho = slope = np.exp(-0.5 * d2)
+    else:
+        raise ValueError(f"kernel {kernel!r}; allowed {KERNELS}")
+    return rho, slope[None] * weighted
+
+
+def log_likelihood_gradient(kernel: str, x: np.ndarray, y: np.ndarray, scale: np.ndarray,
+                            nugget: float) -> tuple[float, np.ndarray]:
+    """Reduced log-likelihood ℓ of :meth:`GPModel.log_likelihood` at θ = ``scale``, ν = ``nugget`` and its
+    gradient with respect to (log θ₁, …, log θ_d, log ν).
+
+    With R = ρ_θ + νI, a = R⁻¹(y − β̂1), S = (y − β̂1)ᵀa = (N − 1)σ̂² (β̂ makes S stationary, so it does not
+    enter the derivative) and ∂S/∂p = −aᵀ(∂R/∂p)a,
+
+        ∂ℓ/∂p = ½ Σᵢⱼ Wᵢⱼ (∂R/∂p)ᵢⱼ,      W = N a aᵀ / S − R⁻¹,
+
+    with ∂R/∂log θ_k = ∂ρ/∂log θ_k and ∂R/∂log ν = νI (Rasmussen & Williams 2006, §5.4.1, for the
+    concentrated form). Raises ``np.linalg.LinAlgError`` when R is not positive definite."""
+    x, y, scale = np.asarray(x, float), np.asarray(y, float), np.asarray(scale, float)
+    n = len(y)
+    rho, drho = _correlation_and_log_scale_derivatives(kernel, _squared_differences(x, x), scale)
+    R = rho + nugget * np.eye(n)
+    cho = sla.cho_factor(R, lower=True)
+    Rinv = sla.cho_solve(cho, np.eye(n))
+    Rinv_1, Rinv_y = Rinv.sum(axis=1), Rinv @ y
+    beta = Rinv_1 @ y / Rinv_1.sum()
+    a = Rinv_y - beta * Rinv_1
+    S = (y - beta) @ a
+    log_det = 2.0 * np.sum(np.log(np.diag(cho[0])))
+    ell = -0.5 * (n * np.log(S / (n - 1)) + log_det + n - 1) - n * np.log(np.sqrt(2 * np.pi))
+    W = (n / S) * np.outer(a, a) - Rinv
+    grad = np.empty(len(scale) + 1)
+    grad[:-1] = 0.5 * np.einsum("ij,kij->k", W, drho)
+    grad[-1] = 0.5 * nugget * np.trace(W)
+    return float(ell), grad
+
+
 def q2(y: np.ndarray, residuals: np.ndarray) -> float:
     """Q² = 1 - Σe² / Σ(y - ȳ)² (NaN for constant y)."""
     ss = np.sum((y - np.mean(y)) ** 2)

@@ -16,7 +16,7 @@ from ringdamper.campaign.adaptive.model import fit_surrogate
 from ringdamper.campaign.adaptive.rounds import RoundFailedError, predicted_optimum, run_loop, training_dataset
 from ringdamper.campaign.adaptive.stopping import BUDGET, CONVERGED, decide, settled_outputs
 from ringdamper.campaign.sampling import make_samples, maximin_lhs
-from ringdamper.config import ConfigError, validate_config
+from ringdamper.config import ConfigError, load_config, validate_config
 from ringdamper.io import write_netcdf
 from tests.campaign.synthetic import dnnm_dataset
 
@@ -162,6 +162,28 @@ def test_an_error_that_rises_above_its_plateau_is_not_settled():
     assert settled_outputs(history[:-1] + [{"zeta": 0.36}], adaptive) == {"zeta": "plateau"}
     assert settled_outputs(history + [{"zeta": 0.36}, {"zeta": 0.34}], adaptive) == {"zeta": "plateau"}
     assert decide(history + [{"zeta": 0.36}, {"zeta": 0.34}], optima + optima[:2], 54, adaptive)["stop"]
+
+
+def test_the_campaign_band_stops_two_recorded_campaigns_at_the_same_round():
+    """The leave-one-out errors and optima recorded round by round by two full campaigns that differ from
+    round 3 on (data/adaptive_stop_histories.csv), replayed through the stop decision with config.yaml's
+    settings: both stop, converged, at round 5 with 54 rings (where both validate better than the paper
+    design, docs/adaptive.md "Why 0.2"); with a band of 0.1 the round-to-round noise of γ's error decides
+    (60 and 66 rings)."""
+    table = pd.read_csv(DATA / "adaptive_stop_histories.csv")
+    adaptive = load_config(Path(__file__).parents[2] / "config.yaml")["sampling"]["adaptive"]
+
+    def stop(records, settings):
+        loo = [{o: r[f"loo_{o}"] for o in ("q_res_z", "omega0", "zeta", "gamma")} for r in records]
+        optima = [{"kappa": [r["kappa1"], r["kappa2"], r["kappa3"]], "zeta_max": r["zeta_max"]} for r in records]
+        for k in range(1, len(records) + 1):
+            decision = decide(loo[:k], optima[:k], records[k - 1]["n_computed"], settings)
+            if decision["stop"]:
+                return records[k - 1]["n_computed"], decision["reason"]
+
+    runs = [table[table.campaign == c].sort_values("round").to_dict("records") for c in ("A", "B")]
+    assert [stop(r, adaptive) for r in runs] == [(54, CONVERGED)] * 2
+    assert [stop(r, {**adaptive, "loo_plateau": 0.1}) for r in runs] == [(60, CONVERGED), (66, CONVERGED)]
 
 
 def test_a_failed_ring_is_excluded_and_a_round_of_failures_is_an_error_naming_them(tmp_path):

@@ -409,16 +409,19 @@ class CoreJacobian:
             J = out
             J[...] = 0.0
         J[np.arange(m.n_d), np.arange(m.n_d)] = 1.0
+        JT = J.T                                    # rows of Jᵀ are contiguous in a Fortran-order J
         for h in range(m.H + 1):
             z, S, Cs, sl, rows = self.z[h], m.S[h], m.Cset[h], m.eta_slices[h], m._rows(h)
             PsiC, PsiS = m.PsiC[h], m.PsiS[h]
-            G = (PsiC * (1.0 / z[Cs])) @ PsiC.conj().T
-            A = np.vstack([G, PsiS.conj().T])                      # response to δΛ_h
+            if h == 0 and np.isrealobj(PsiC):           # z_0 is real: G_0 in real arithmetic
+                A = np.vstack([(PsiC * (1.0 / z[Cs].real)) @ PsiC.T, PsiS.T])
+            else:
+                A = np.vstack([(PsiC * (1.0 / z[Cs])) @ PsiC.conj().T, PsiS.conj().T])   # [G_h; Ψ_Sᴴ]
             Areal = A.real if h == 0 else _real_rows(A, p)
-            KA = _apply_contact_jacobian(Areal, kc, m.fourier.slots(h), active, p)
+            KAT = _apply_contact_jacobian(Areal, kc, m.fourier.slots(h), active, p, transposed=True)
             nr = rows.stop - rows.start
-            J[rows, :m.n_d] += KA[:nr]
-            J[sl, :m.n_d] += KA[nr:]
+            JT[:m.n_d, rows] += KAT[:, :nr]
+            JT[:m.n_d, sl] += KAT[:, nr:]
             if h == 0:
                 J[rows, sl] = -PsiS.real
                 J[sl, sl] = np.diag(z[S].real)
@@ -468,16 +471,23 @@ def _real_rows(A: np.ndarray, p: int) -> np.ndarray:
 
 
 def _apply_contact_jacobian(A: np.ndarray, kc: np.ndarray, slots: slice, active: np.ndarray,
-                            p: int) -> np.ndarray:
+                            p: int, transposed: bool = False) -> np.ndarray:
     """``A @ K_c[slots rows, :]`` with ``A`` (R, L·p) over ``(slot in slots, coordinate)`` columns
-    and ``K_c`` the block-diagonal AFT Jacobian ``kc`` (np, 3, C, 3, C); inactive pairs skipped."""
+    and ``K_c`` the block-diagonal AFT Jacobian ``kc`` (np, 3, C, 3, C); inactive pairs skipped.
+    ``transposed``: the product's transpose (C·p, R) instead, computed as such (``K_cᵀ Aᵀ`` pair by
+    pair), for accumulation into the rows of a transposed matrix."""
     npairs, C = kc.shape[0], kc.shape[2]
     L = slots.stop - slots.start
     R = A.shape[0]
-    out = np.zeros((R, C, npairs, 3))
+    out = np.zeros((C, npairs, 3, R) if transposed else (R, C, npairs, 3))
     if np.any(active):
         na = int(active.sum())
-        Aq = A.reshape(R, L, npairs, 3)[:, :, active].transpose(2, 0, 1, 3).reshape(na, R, 3 * L)
+        Aq = A.reshape(R, L, npairs, 3)[:, :, active]                               # (R, L, na, 3)
         Kq = kc[active][:, :, slots].transpose(0, 2, 1, 3, 4).reshape(na, 3 * L, 3 * C)
-        out[:, :, active] = np.matmul(Aq, Kq).reshape(na, R, 3, C).transpose(1, 3, 0, 2)
-    return out.reshape(R, C * p)
+        if transposed:
+            product = np.matmul(Kq.transpose(0, 2, 1), Aq.transpose(2, 1, 3, 0).reshape(na, 3 * L, R))
+            out[:, active] = product.reshape(na, 3, C, R).transpose(2, 0, 1, 3)
+        else:
+            product = np.matmul(Aq.transpose(2, 0, 1, 3).reshape(na, R, 3 * L), Kq)
+            out[:, :, active] = product.reshape(na, R, 3, C).transpose(1, 3, 0, 2)
+    return out.reshape(C * p, R) if transposed else out.reshape(R, C * p)

@@ -62,19 +62,23 @@ class Factorization:
         return x
 
 
+def factorize(J, trivial: np.ndarray | None, n_core: int) -> Factorization:
+    """The :class:`Factorization` of ``J`` (a matrix, or an operator formed for the occasion, whose
+    matrix the LU may then overwrite)."""
+    return Factorization(dense(J), trivial, n_core, overwrite=is_operator(J))
+
+
 def linear_solver(J, trivial: np.ndarray | None, n_core: int, previous=None,
                   weights: np.ndarray | None = None):
     """Solver of systems with the Jacobian ``J``: GMRES preconditioned by the LU of ``previous``
     (a solver of an earlier Jacobian of the same shape) when ``J`` is an operator of at least
     :data:`ringdamper.nonlinear.krylov.MIN_SIZE` unknowns (:class:`ringdamper.nonlinear.krylov.LaggedSolver`;
     ``weights``: 1/scale of the unknowns), otherwise the :class:`Factorization` of ``J``."""
-    def factorize(A):
-        return Factorization(A, trivial, n_core, overwrite=is_operator(J))
-
     lagged = is_operator(J) and J.shape[0] >= krylov.MIN_SIZE
     if lagged and previous is not None and previous.factorization.n == J.shape[0]:
-        return LaggedSolver(J, previous.factorization, weights, factorize)
-    return factorize(dense(J))
+        return LaggedSolver(J, previous.factorization, weights,    # A: the operator J formed anew
+                            lambda A: Factorization(A, trivial, n_core, overwrite=True))
+    return factorize(J, trivial, n_core)
 
 
 @dataclass
@@ -136,7 +140,7 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_
             if not (np.all(np.isfinite(r)) and (is_operator(J) or np.all(np.isfinite(J)))):
                 return NewtonResult(z, False, it, payload, None, "non-finite residual or Jacobian",
                                     n_jac)
-            fac = Factorization(dense(J), trivial, n_core, overwrite=is_operator(J))
+            fac = factorize(J, trivial, n_core)
             n_jac += 1
             dz = None
         payload = ev[4]

@@ -24,7 +24,8 @@ from ringdamper.campaign.kriging.transform import Transform
 
 DATA = pd.read_csv(Path(__file__).parent / "data" / "paper_zeta_branches.csv")
 CAMPAIGN = yaml.safe_load((Path(__file__).parents[2] / "config.yaml").read_text())["surrogate"]
-LIBRARY_DEFAULTS = {k: K.DEFAULT_SETTINGS[k] for k in ("scale_bounds", "nugget", "n_starts")}  # θ ≥ 0.1, ν = 1e-12, 8 starts
+# θ ≥ 0.1, ν = 1e-12, 8 starts
+LIBRARY_DEFAULTS = {k: K.DEFAULT_SETTINGS[k] for k in ("scale_bounds", "nugget", "n_starts")}
 CORNER = np.array([[0.195343, -1.0, 1.0]])  # the second run's predicted optimum
 ZETA_COMPUTED = 1.4200458612073227e-3  # ζ of the ring computed at CORNER, same amplitude (status 3)
 X = DATA[["kappa1", "kappa2", "kappa3"]].to_numpy()

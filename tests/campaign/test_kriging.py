@@ -218,6 +218,9 @@ def test_a_stored_fit_is_recognised_only_on_its_own_training_data_and_settings(t
     assert not K.fitted_on(stored, changed, mask=mask, settings=FAST)
     assert not K.fitted_on(stored, ds, settings=FAST)
     assert not K.fitted_on(stored, ds, mask=mask, settings={**FAST, "n_starts": 3})
+    moved = ds.assign_coords(kappa1=ds.kappa1 + 5e-11 * np.sign(ds.kappa1))
+    assert not K.fitted_on(stored, moved, mask=mask, settings=FAST)
+    assert K.fitted_on(stored, moved, mask=mask, settings=FAST, kappa_tolerance=1e-9)
 
 
 def test_nan_training_value_is_rejected_with_its_name():

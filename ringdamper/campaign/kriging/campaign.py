@@ -189,18 +189,22 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
     return xr.Dataset(data, coords=coords, attrs=_fit_attrs(s))
 
 
-def fitted_on(fit: xr.Dataset, dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict | None = None) -> bool:
+def fitted_on(fit: xr.Dataset, dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict | None = None,
+              kappa_tolerance: float = 0.0) -> bool:
     """True when ``fit`` (a ``kriging.nc`` Dataset) is what :func:`fit_campaign` returns for these arguments:
-    fitted by this OpenTURNS with the same settings on the same geometries, κ, amplitudes, training mask
-    and training values, bit for bit. The fit is a deterministic function of those (seeded starts; the
-    worker count does not matter), so such a ``fit`` need not be fitted again: the adaptive design's
-    stopping round has fitted exactly the campaign's training rings (docs/adaptive.md, *In Snakemake*)."""
+    fitted by this OpenTURNS with the same settings on the same geometries, amplitudes, training mask and
+    training values, bit for bit, and κ within ``kappa_tolerance``. The fit is a deterministic function of
+    those (seeded starts; the worker count does not matter), so such a ``fit`` need not be fitted again:
+    the adaptive design's stopping round has fitted exactly the campaign's training rings (docs/adaptive.md,
+    *In Snakemake*)."""
     outputs = tuple(outputs)
     dataset, kappa, use, values = _training_inputs(dataset, outputs, mask)
     attrs = _fit_attrs(check_settings(settings))
     if list(fit["output"].values) != list(outputs) or fit.sizes.get("geometry") != len(kappa):
         return False
-    arrays = [(fit["geometry"].values, _geometry_ids(dataset, kappa)), (fit["kappa"].values, kappa),
+    if not np.max(np.abs(fit["kappa"].values - kappa), initial=0.0) <= kappa_tolerance:
+        return False
+    arrays = [(fit["geometry"].values, _geometry_ids(dataset, kappa)),
               (fit["amplitude"].values, dataset["amplitude"].values),
               (fit["training_mask"].values, use.T.astype(np.int8)),
               *((fit[out].values, np.where(use, values[out], np.nan).T) for out in outputs)]

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 import yaml
 
+from ringdamper.campaign.adaptive.rounds import round_models, training_dataset
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.io import write_netcdf
 from ringdamper.nonlinear.stage import amplitude_grid, failed_dnnm
@@ -18,10 +19,13 @@ ROUND_1 = [{"gid": "a01_000", "kappa": [0.5, 0.5, -0.5]}, {"gid": "a01_001", "ka
 
 
 def _tree(out, small_config, failed):
-    """Initial rings and round 1 (its rings ``failed`` failed) of a synthetic campaign under ``out``."""
+    """Initial rings and round 1 (its rings ``failed`` failed; its record and the models it fitted on the
+    initial rings) of a synthetic campaign under ``out``."""
     samples = make_samples(small_config["sampling"])
     alpha = amplitude_grid(small_config["dnnm"])
-    write_campaign(out, samples[samples.split == "training"], alpha)
+    paths = write_campaign(out, samples[samples.split == "training"], alpha)
+    write_netcdf(round_models(*training_dataset(samples, [], paths), small_config).kriging,
+                 out / "adaptive" / "round_1_kriging.nc")
     for ring in ROUND_1:
         ds = (failed_dnnm(small_config, ring["kappa"], "RuntimeError: static solve failed", 3)
               if ring["gid"] in failed else dnnm_dataset(ring["kappa"], alpha))
@@ -30,7 +34,6 @@ def _tree(out, small_config, failed):
               "reason": None, "optimum_changes": [],
               "optimum": {"kappa": [0.4, -0.3, 0.2], "zeta_max": 3e-3, "zeta_max_std": 1e-5},
               "chosen": [dict(ring, score=1.0, explore=1.0, exploit=0.0) for ring in ROUND_1]}
-    (out / "adaptive").mkdir(parents=True)
     (out / "adaptive" / "round_1.yaml").write_text(yaml.safe_dump(record))
 
 

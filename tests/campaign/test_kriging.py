@@ -200,6 +200,29 @@ def test_models_do_not_depend_on_the_number_of_worker_processes():
             assert (var.values == pooled[name].values).all(), name
 
 
+def test_a_stored_fit_is_recognised_only_on_its_own_training_data_and_settings(tmp_path):
+    """fitted_on (the kriging rule takes the adaptive design's stopping round's models with it): true for a
+    fit read back from kriging.nc, whose every model equals a fit made again; false once one training value,
+    the training mask or a setting differs."""
+    ds = campaign_dataset()
+    mask = np.ones((ds.sizes["geometry"], ds.sizes["amplitude"]), bool)
+    mask[3, 2] = False
+    write_netcdf(K.fit_campaign(ds, mask=mask, settings=FAST), tmp_path / "kriging.nc")
+    stored = read_netcdf(tmp_path / "kriging.nc")
+    assert K.fitted_on(stored, ds, mask=mask, settings=FAST)
+    again = K.fit_campaign(ds, mask=mask, settings=FAST)
+    for name, var in again.data_vars.items():
+        np.testing.assert_array_equal(stored[name].values, var.values, err_msg=name)
+    changed = ds.copy(deep=True)
+    changed["gamma"][7, 1] *= 1.0 + 1e-15
+    assert not K.fitted_on(stored, changed, mask=mask, settings=FAST)
+    assert not K.fitted_on(stored, ds, settings=FAST)
+    assert not K.fitted_on(stored, ds, mask=mask, settings={**FAST, "n_starts": 3})
+    moved = ds.assign_coords(kappa1=ds.kappa1 + 5e-11 * np.sign(ds.kappa1))
+    assert not K.fitted_on(stored, moved, mask=mask, settings=FAST)
+    assert K.fitted_on(stored, moved, mask=mask, settings=FAST, kappa_tolerance=1e-9)
+
+
 def test_nan_training_value_is_rejected_with_its_name():
     ds = campaign_dataset()
     ds["zeta"][4, 1] = np.nan

@@ -1,7 +1,8 @@
 # The adaptive design's rounds (docs/adaptive.md). Round k is a checkpoint: it reads the dnnm.nc of the
 # training rings computed so far (the initial design's and those rounds 1 .. k-1 chose), fits the
 # surrogates, and writes its record: the stop decision and, unless it stops, the rings of round k
-# (gids a<k>_<i>), which then run through the same per-geometry rules as every other ring. While a round
+# (gids a<k>_<i>), which then run through the same per-geometry rules as every other ring. It also writes
+# its models, which the rule kriging takes from the round that stopped (same rings, same fit). While a round
 # fits or its rings wait, the validation rings and the modal stage keep the cores busy.
 
 
@@ -10,7 +11,8 @@ checkpoint adaptive_round:
         dnnm=lambda wildcards: [f"{RESULTS}/geometry/{gid}/dnnm.nc" for gid in round_training(wildcards)],
         records=lambda wildcards: [round_record(k) for k in range(1, int(wildcards.round))],
     output:
-        round_record("{round}"),
+        record=round_record("{round}"),
+        models=round_models("{round}"),
     wildcard_constraints:
         round=r"[1-9][0-9]*",
     params:

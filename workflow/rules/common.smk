@@ -67,6 +67,18 @@ def round_record(round_):
     return f"{RESULTS}/adaptive/round_{round_}.yaml"
 
 
+def round_models(round_):
+    """The models adaptive round ``round_`` fitted (a kriging.nc Dataset)."""
+    return f"{RESULTS}/adaptive/round_{round_}_kriging.nc"
+
+
+def stopping_round_models(wildcards):
+    """The models of the round that stopped (none for the paper design): the rule kriging takes them when
+    they were fitted on the campaign's training rings."""
+    records = finished_rounds()
+    return [round_models(records[-1]["round"])] if records else []
+
+
 def read_round(round_):
     """The record of round ``round_``; raises until its checkpoint has run (Snakemake then runs it)."""
     with open(checkpoints.adaptive_round.get(round=str(round_)).output[0]) as fh:

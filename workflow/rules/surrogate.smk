@@ -28,7 +28,8 @@ rule aggregate:
 
 rule kriging:
     input:
-        f"{RESULTS}/campaign/dataset.nc",
+        dataset=f"{RESULTS}/campaign/dataset.nc",
+        models=stopping_round_models,
     output:
         f"{RESULTS}/surrogate/kriging.nc",
     params:

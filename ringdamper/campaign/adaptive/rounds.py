@@ -24,7 +24,7 @@ from ..sampling import make_samples
 from .acquisition import acquisition
 from .batch import select_batch
 from .design import candidates, round_gid, with_rounds
-from .model import fit_surrogate, normalised_loo, training_spread
+from .model import RoundModels, fit_surrogate, normalised_loo, training_spread
 from .stopping import decide
 
 log = logging.getLogger(__name__)
@@ -72,14 +72,21 @@ def predicted_optimum(surrogate, points: np.ndarray, q_max: float) -> dict:
     return {"kappa": _floats(k_opt), "zeta_max": float(mu[0]), "zeta_max_std": float(bb.std["zeta"][j[0], 0])}
 
 
+def round_models(dataset: xr.Dataset, mask: xr.DataArray, config: dict, workers: int = 1) -> RoundModels:
+    """The models a round reads: fitted on the rings of ``dataset`` with a usable point (``mask``)."""
+    usable = mask.values.any(axis=1)
+    return fit_surrogate(dataset.isel(geometry=usable), mask.isel(geometry=usable), config["surrogate"], workers)
+
+
 def plan_round(dataset: xr.Dataset, mask: xr.DataArray, history: list[dict], config: dict, round_: int,
-               validation: np.ndarray, workers: int = 1) -> dict:
+               validation: np.ndarray, workers: int = 1, models: RoundModels | None = None) -> dict:
     """The record of round ``round_`` (module docstring). ``dataset``/``mask``: the training rings so far
     (:func:`training_dataset`); ``history``: the records of the earlier rounds; ``config``: the sampling,
-    surrogate and exploration sections; ``validation``: (n, 3) the validation rings, kept away from."""
+    surrogate and exploration sections; ``validation``: (n, 3) the validation rings, kept away from;
+    ``models``: those :func:`round_models` fitted on ``dataset`` (fitted here when not given)."""
     adaptive, q_max = config["sampling"]["adaptive"], config["exploration"]["optimum_max_level"]
     usable = mask.values.any(axis=1)
-    models = fit_surrogate(dataset.isel(geometry=usable), mask.isel(geometry=usable), config["surrogate"], workers)
+    models = round_models(dataset, mask, config, workers) if models is None else models
     loo = normalised_loo(models.kriging)
     points = candidates(config["sampling"], round_, validation)
     optimum = predicted_optimum(models.surrogate, points, q_max)

@@ -14,7 +14,16 @@ Modules:
 Method, settings, the ``kriging.nc`` layout and the measurements behind the choices: docs/surrogate.md.
 """
 
-from .campaign import OUTPUTS, PARAMETERS, STATUS_CONSTANT, STATUS_GP, STATUS_MEANINGS, STATUS_UNFITTED, fit_campaign
+from .campaign import (
+    OUTPUTS,
+    PARAMETERS,
+    STATUS_CONSTANT,
+    STATUS_GP,
+    STATUS_MEANINGS,
+    STATUS_UNFITTED,
+    fit_campaign,
+    fitted_on,
+)
 from .fit import AMPLITUDE_RTOL, CONSTANT_RTOL, MATCH_RTOL, NUGGET_PROFILE, fit_model, fit_ot
 from .gp import BAND_PROBABILITY, KERNELS, SIGMA_BAND, GPModel, correlation, q2
 from .settings import DEFAULT_SETTINGS, DOMAIN_WIDTH, check_settings
@@ -23,4 +32,4 @@ from .surrogate import KrigingSurrogate, predict
 __all__ = ["AMPLITUDE_RTOL", "BAND_PROBABILITY", "CONSTANT_RTOL", "DEFAULT_SETTINGS", "DOMAIN_WIDTH", "KERNELS",
            "MATCH_RTOL", "NUGGET_PROFILE", "OUTPUTS", "PARAMETERS", "SIGMA_BAND", "STATUS_CONSTANT", "STATUS_GP",
            "STATUS_MEANINGS", "STATUS_UNFITTED", "GPModel", "KrigingSurrogate", "check_settings", "correlation",
-           "fit_campaign", "fit_model", "fit_ot", "predict", "q2"]
+           "fit_campaign", "fit_model", "fit_ot", "fitted_on", "predict", "q2"]

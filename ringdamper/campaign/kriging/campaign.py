@@ -103,16 +103,12 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
     """
     s = check_settings(settings)
     outputs = tuple(outputs)
-    kappa = _check_inputs(dataset, outputs)
-    use = _training_mask(dataset, mask)
-    used = use.any(axis=1)  # geometries that train at least one model: the only ones stored
-    dataset, kappa, use = dataset.isel(geometry=used), kappa[used], use[used]
+    dataset, kappa, use, values = _training_inputs(dataset, outputs, mask)
     n_amp, n_out, dim = dataset.sizes["amplitude"], len(outputs), len(PARAMETERS)
     scale = np.full((n_out, n_amp, dim), np.nan)
     nugget, loglik, q2s = (np.full((n_out, n_amp), np.nan) for _ in range(3))
     status = np.full((n_out, n_amp), STATUS_UNFITTED, dtype=np.int8)
     n_train = use.sum(axis=0)
-    values = {out: dataset[out].transpose("geometry", "amplitude").values.astype(float) for out in outputs}
     tasks, keys = [], []
     transforms = np.full((n_out, n_amp), Transform(), dtype=object)
     scales = {out: float(np.max(np.abs(values[out]), where=use & np.isfinite(values[out]), initial=0.0))
@@ -164,7 +160,7 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
         per_output[f"{out}_loo_residual"] = variable(("amplitude", "geometry"), loo, units,
                                                      f"leave-one-out residual of {out} (fixed hyperparameters)")
     amp_attrs = {"units": "1", "long_name": "modal amplitude", **dataset["amplitude"].attrs}
-    geometry = dataset["geometry"].values if "geometry" in dataset.coords else np.arange(len(kappa))
+    geometry = _geometry_ids(dataset, kappa)
     data = {
         "kappa": variable(("geometry", "parameter"), kappa, "1",
                           "normalised shape parameters of the training geometries"),
@@ -190,10 +186,53 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
         "parameter": variable("parameter", np.array(PARAMETERS, dtype=object), "1", "shape parameter"),
         "geometry": variable("geometry", geometry, "1", "training geometry"),
     }
+    return xr.Dataset(data, coords=coords, attrs=_fit_attrs(s))
+
+
+def fitted_on(fit: xr.Dataset, dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict | None = None,
+              kappa_tolerance: float = 0.0) -> bool:
+    """True when ``fit`` (a ``kriging.nc`` Dataset) is what :func:`fit_campaign` returns for these arguments:
+    fitted by this OpenTURNS with the same settings on the same geometries, amplitudes, training mask and
+    training values, bit for bit, and κ within ``kappa_tolerance``. The fit is a deterministic function of
+    those (seeded starts; the worker count does not matter), so such a ``fit`` need not be fitted again:
+    the adaptive design's stopping round has fitted exactly the campaign's training rings (docs/adaptive.md,
+    *In Snakemake*)."""
+    outputs = tuple(outputs)
+    dataset, kappa, use, values = _training_inputs(dataset, outputs, mask)
+    attrs = _fit_attrs(check_settings(settings))
+    if list(fit["output"].values) != list(outputs) or fit.sizes.get("geometry") != len(kappa):
+        return False
+    if not np.max(np.abs(fit["kappa"].values - kappa), initial=0.0) <= kappa_tolerance:
+        return False
+    arrays = [(fit["geometry"].values, _geometry_ids(dataset, kappa)),
+              (fit["amplitude"].values, dataset["amplitude"].values),
+              (fit["training_mask"].values, use.T.astype(np.int8)),
+              *((fit[out].values, np.where(use, values[out], np.nan).T) for out in outputs)]
+    same_data = all(a.shape == b.shape and np.array_equal(a, b, equal_nan=a.dtype.kind == "f") for a, b in arrays)
+    return same_data and all(np.array_equal(np.atleast_1d(fit.attrs.get(k)), np.atleast_1d(v))
+                             for k, v in attrs.items())
+
+
+def _training_inputs(dataset: xr.Dataset, outputs: tuple, mask):
+    """The geometries that train at least one model (the only ones a fit stores), their κ, training mask
+    (geometry, amplitude) and output values."""
+    kappa = _check_inputs(dataset, outputs)
+    use = _training_mask(dataset, mask)
+    used = use.any(axis=1)
+    dataset, kappa, use = dataset.isel(geometry=used), kappa[used], use[used]
+    values = {out: dataset[out].transpose("geometry", "amplitude").values.astype(float) for out in outputs}
+    return dataset, kappa, use, values
+
+
+def _geometry_ids(dataset: xr.Dataset, kappa: np.ndarray) -> np.ndarray:
+    return dataset["geometry"].values if "geometry" in dataset.coords else np.arange(len(kappa))
+
+
+def _fit_attrs(s: dict) -> dict:
+    """The attributes of a fit: the OpenTURNS version and the settings."""
     import openturns as ot
 
-    attrs = {"openturns_version": ot.__version__, "kernel": s["kernel"], "n_starts": s["n_starts"],
-             "seed": s["seed"], "scale_bounds": list(s["scale_bounds"]), "scale_bounds_unit": "kappa-domain width (2)",
-             "nugget_setting": list(np.atleast_1d(s["nugget"])), "min_training": s["min_training"],
-             "transform": ", ".join(f"{k}: {v}" for k, v in s["transform"].items()), "log_offset": s["log_offset"]}
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    return {"openturns_version": ot.__version__, "kernel": s["kernel"], "n_starts": s["n_starts"],
+            "seed": s["seed"], "scale_bounds": list(s["scale_bounds"]), "scale_bounds_unit": "kappa-domain width (2)",
+            "nugget_setting": list(np.atleast_1d(s["nugget"])), "min_training": s["min_training"],
+            "transform": ", ".join(f"{k}: {v}" for k, v in s["transform"].items()), "log_offset": s["log_offset"]}

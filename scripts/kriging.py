@@ -19,13 +19,14 @@ mask = usable_mask(ds)
 check_training(ds, mask, settings["min_training"])
 train = (ds.split == "training").values
 training, training_mask = ds.isel(geometry=train), mask.isel(geometry=train)
-rounds = [read_netcdf(path) for path in sm.input.models]
-if rounds and fitted_on(rounds[-1], training, mask=training_mask, settings=settings, kappa_tolerance=KAPPA_DIGITS):
-    fit = rounds[-1]
+stopped = read_netcdf(sm.input.models[0]) if sm.input.models else None   # none for the paper design
+if stopped is not None and fitted_on(stopped, training, mask=training_mask, settings=settings,
+                                     kappa_tolerance=KAPPA_DIGITS):
+    fit = stopped
     log.info("the stopping round's models were fitted on these training data with these settings: taken (%s)",
-             sm.input.models[-1])
+             sm.input.models[0])
 else:
-    if rounds:
+    if stopped is not None:
         log.info("the stopping round's models were fitted on other data or settings: fitting anew")
     fit = fit_campaign(training, mask=training_mask, settings=settings, workers=sm.threads)
 log.info("%d models; Q2 per output (median over amplitudes): %s", int((fit.status < 2).sum()),

@@ -184,19 +184,17 @@ class GPModel:
 
 
 def _correlation_and_log_scale_derivatives(kernel: str, sq: np.ndarray, scale: np.ndarray):
-    """ρ_θ (N, N) and ∂ρ/∂log θ_k (d, N, N) from the squared differences ``sq`` (d, N, N):
-    with d² = Σ_k Δ_k²/θ_k², ∂d²/∂log θ_k = −2Δ_k²/θ_k², so ∂ρ/∂log θ_k = −2 (dρ/dd²) Δ_k²/θ_k², where
-    −2 dρ/dd² = (5/3)(1 + √5 d) e^{−√5 d} (Matérn 5/2) or e^{−d²/2} (squared exponential)."""
+    """ρ_θ (N, N) (:func:`correlation`) and ∂ρ/∂log θ_k (d, N, N) from the squared differences ``sq``
+    (d, N, N): with d² = Σ_k Δ_k²/θ_k², ∂d²/∂log θ_k = −2Δ_k²/θ_k², so ∂ρ/∂log θ_k = −2 (dρ/dd²) Δ_k²/θ_k²,
+    where −2 dρ/dd² = (5/3)(1 + √5 d) e^{−√5 d} (Matérn 5/2) or ρ itself (squared exponential)."""
     weighted = sq / scale[:, None, None] ** 2
     d2 = weighted.sum(axis=0)
+    rho = correlation(kernel, d2.copy())
     if kernel == "matern52":
         d = np.sqrt(5.0 * d2)
-        decay = np.exp(-d)
-        rho, slope = (1.0 + d + d * d / 3.0) * decay, (5.0 / 3.0) * (1.0 + d) * decay
-    elif kernel == "squared_exponential":
-        rho = slope = np.exp(-0.5 * d2)
+        slope = (5.0 / 3.0) * (1.0 + d) * np.exp(-d)
     else:
-        raise ValueError(f"kernel {kernel!r}; allowed {KERNELS}")
+        slope = rho
     return rho, slope[None] * weighted
 
 

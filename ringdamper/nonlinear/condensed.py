@@ -93,12 +93,21 @@ class CoreEval:
     gauge: np.ndarray
 
 
+def structural_damping(structure: Structure, H: int, zeta_s: float | np.ndarray = 0.0) -> list | None:
+    """Modal damping coefficients ``c_r`` of harmonics ``0..H`` (:meth:`ModalHarmonic.damping`): the
+    structure's own (``C`` or modal ratios), else ``2 ζ_s ω_r``; None when neither damps."""
+    if not structure.damped and not np.any(np.asarray(zeta_s) != 0):
+        return None
+    return [structure.modal(h).damping(zeta_s) for h in range(H + 1)]
+
+
 class CondensedHBM:
     """Condensed HBM of one structure, contact set and harmonic truncation.
 
     ``explicit[h]``: indices of the modes of harmonic h kept as unknowns (the zero modes of
     harmonic 0 are always added). ``damping[h]``: modal damping coefficients ``c_r`` (None: no
-    structural damping, as in the dNNM). ``forced``: include the forcing vectors scaled by
+    structural damping, as in the campaign's dNNM; :func:`structural_damping` gives the
+    structure's). ``forced``: include the forcing vectors scaled by
     ``gamma``. ``gauge_tol``: a rigid-body direction whose DC contact stiffness (singular value
     of ``K_c Ψ_Z``) is below ``gauge_tol × max(kn, kt) × ‖Ψ_Z‖₂`` counts as not held (module
     docstring, *soft hold*).
@@ -109,8 +118,7 @@ class CondensedHBM:
                  gauge_tol: float = 1e-2):
         if H > structure.H_max:
             raise ValueError(f"structure has harmonics up to {structure.H_max}, H={H} requested")
-        if contacts.npairs != structure.npairs:
-            raise ValueError("contact parameters and structure disagree on the number of pairs")
+        contacts = contacts.for_pairs(structure.npairs)
         self.structure, self.contacts = structure, contacts
         self.H, self.fourier = H, Fourier(H, nt)
         self.C, self.p, self.npairs = 2 * H + 1, structure.p, structure.npairs
@@ -118,6 +126,7 @@ class CondensedHBM:
         self.modal = [structure.modal(h) for h in range(H + 1)]
         self.damping = [np.zeros(m.w2.size) if damping is None else np.asarray(damping[h], float)
                         for h, m in enumerate(self.modal)]
+        self.damped = damping is not None
         self.forced, self.gamma = forced, gamma
         self.static = contacts.static_force().ravel()
         self.S, self.Cset, self.eta_slices = [], [], []

@@ -5,6 +5,11 @@ For every dNNM point (ω, ζ = ξ/2ω, modal coordinates ``η_{h,r}``), with the
 
     E_damp = ∫_0^T q̇ᵀ (C + 2ζω M) q̇ dt = π ω Σ_{h≥1} h² Q_hᴴ (C_h + 2ζω M_h) Q_h
            = π ω Σ_h h² Σ_r (c_r + ξ) |η_{h,r}|²                     (Eq. 6; c_r modal damping),
+
+with ``C`` the structural damping ``zeta_s`` when the backbone was computed without it (the campaign).
+A backbone of a structure with its own damping already has it in ``ξ`` (the EPMC's negative damping
+balances every dissipation, :mod:`ringdamper.nonlinear.epmc`), so there ``c_r = 0`` and ``zeta_s``
+must be zero: adding it would count that damping twice.
     E_f(γ, φ) = ∫_0^T Re(γ e^{iφ} F̂ e^{iωt}) · q̇ dt = π γ Im(e^{iφ} Q_1ᴴ F̂)      (Eq. 5),
 
 so ``max_φ E_f = π γ |Q_1ᴴ F̂|`` at ``φ = π/2 − arg(Q_1ᴴ F̂)`` and ``E_f = E_damp`` gives
@@ -68,11 +73,15 @@ class EEBMResult:
 def eebm(backbone: Backbone, zeta_s: float | np.ndarray = 0.0,
          zeta_limit: float = ZETA_LIMIT) -> EEBMResult:
     """Apply the E-EBM to every point of ``backbone`` with structural modal damping ratio
-    ``zeta_s`` (or the structure's ``C`` where given) and the structure's harmonic-1 forcing;
-    points whose total damping ratio exceeds ``zeta_limit`` are flagged and logged."""
+    ``zeta_s`` (a backbone of a damped structure has its damping in ξ already: ``zeta_s`` must be 0)
+    and the structure's harmonic-1 forcing; points whose total damping ratio exceeds ``zeta_limit``
+    are flagged and logged."""
     model = backbone.model
     n = backbone.alpha.size
-    c = [m.damping(zeta_s) for m in model.modal]
+    if model.damped and np.any(np.asarray(zeta_s) != 0):
+        raise ValueError("zeta_s: the backbone's structure has its own damping (C or modal ratios), "
+                         "which the EPMC's xi already balances; give one of the two, not both")
+    c = [np.zeros(m.w2.size) if model.damped else m.damping(zeta_s) for m in model.modal]
     f1 = model.modal[1].f
     if not np.any(f1):
         raise ValueError("the structure has no harmonic-1 forcing vector")

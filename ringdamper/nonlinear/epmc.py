@@ -1,7 +1,14 @@
 """Damped nonlinear normal modes by the extended periodic motion concept (Krack 2015; paper §2.5.3;
 docs/design.md §3.4).
 
-    M q̈ + K q + Bᵀ λ(Bq) − ξ M q̇ = 0,       ξ = 2 ζ ω      (structural damping *not* included),
+    M q̈ + (C − ξ M) q̇ + K q + Bᵀ λ(Bq) = 0,       ξ = 2 ζ ω,
+
+with ``C`` the structure's own damping (matrix or modal ratios, :mod:`ringdamper.nonlinear.structure`;
+absent in the campaign, whose structural damping enters the E-EBM only). The artificial negative
+damping acts on the mass matrix (Krack's definition), so ``ξ`` balances every dissipation over a
+period, ``ξ ∫ q̇ᵀ M q̇ dt = ∫ q̇ᵀ C q̇ dt + ∮ λ · dd``, and ``ζ`` is the total damping ratio. For a linear
+system with modal damping ``c_r = 2 ζ_r ω_r`` the solution is the mode itself: ``ω = ω_r`` (the
+undamped natural frequency, ``|λ|`` of the eigenvalue ``λ = −ζ_r ω_r ± i ω_r √(1 − ζ_r²)``) and ``ζ = ζ_r``.
 
 solved by harmonic balance (condensed, :mod:`ringdamper.nonlinear.condensed`) with unknowns
 ``z = [y, ω, ξ]`` and two extra equations:
@@ -22,7 +29,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
+from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes, structural_damping
 from ringdamper.nonlinear.continuation import ContinuationPoint, NaturalResult, StepControl, natural_then_arclength
 from ringdamper.nonlinear.fourier import default_nt
 from ringdamper.nonlinear.friction import FrictionContacts
@@ -74,6 +81,11 @@ class Backbone:
     @property
     def H(self) -> int:
         return self.model.H
+
+    def harmonics(self, i: int) -> list:
+        """Harmonics ``Q_h = Φ_h η_h`` (complex, ``h = 0..H``, convention of
+        :mod:`ringdamper.nonlinear.fourier`) of every DoF at grid point ``i``."""
+        return [m.Phi @ e[i] for m, e in zip(self.model.modal, self.eta)]
 
     @property
     def nt(self) -> int:
@@ -179,9 +191,11 @@ def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
         raise ValueError("the EPMC needs H >= 1")
     nt = default_nt(H) if nt is None else nt
     steps = steps or default_steps()
+    contacts = contacts.for_pairs(structure.npairs)
     omega0, phi = _stuck_mode(structure, contacts, mode, omega_target)
     window = (omega0 * (1 - 2 * pole_band), omega0 * (1 + pole_band))
-    model = CondensedHBM(structure, contacts, H, nt, explicit=pole_modes(structure, H, *window))
+    model = CondensedHBM(structure, contacts, H, nt, explicit=pole_modes(structure, H, *window),
+                         damping=structural_damping(structure, H))
     if gauge_reference is not None:
         model.eta_ref = np.asarray(gauge_reference, float).copy()
     _, phase_index = _initial_guess(model, phi, omega0, 1.0)
@@ -211,6 +225,7 @@ def _stuck_mode(structure, contacts, mode, omega_target):
 def linear_limit(structure, contacts, phi):
     """Smallest modal amplitude at which the linear stuck mode ``phi`` would make a preloaded
     pair slip (``kt |d_t| = μ N0``) or open (``kn |d_n| = N0``), or a gapped pair close."""
+    contacts = contacts.for_pairs(structure.npairs)
     d = np.abs(structure.harmonics[1].B @ phi).reshape(-1, 3)
     with np.errstate(divide="ignore"):
         slip = contacts.mu * contacts.N0 / (contacts.kt * np.max(d[:, 1:], axis=1))
@@ -227,6 +242,7 @@ def stick_limit(structure, contacts, phi) -> float:
     θ, i.e. ``α max_± |kt c_j ± μ kn c_n| ≤ μ N0`` (the normal force varies with the motion); the
     normal force stays positive while ``α kn |c_n| < N0``; a gap stays open while ``α |c_n| < gap``.
     A pair without friction (μ = 0) carries no tangential force in either state."""
+    contacts = contacts.for_pairs(structure.npairs)
     c = (structure.harmonics[1].B @ phi).reshape(-1, 3)
     kn, kt, mu, n0 = contacts.kn, contacts.kt, contacts.mu, contacts.N0
     load = np.maximum(np.abs(kt[:, None] * c[:, 1:] - (mu * kn * c[:, 0])[:, None]),
@@ -302,7 +318,8 @@ def resolve_point(backbone: Backbone, i: int, H: int, nt: int | None = None, tol
     base = backbone.model
     nt = default_nt(H) if nt is None else nt
     model = CondensedHBM(base.structure, base.contacts, H, nt,
-                         explicit=pole_modes(base.structure, H, *backbone.pole_window))
+                         explicit=pole_modes(base.structure, H, *backbone.pole_window),
+                         damping=structural_damping(base.structure, H))
     if not all(np.array_equal(a, b) for a, b in zip(base.S, model.S)):
         raise ValueError("the explicit modes of the shared harmonics differ between the two truncations")
     z0 = _padded_state(backbone, i, model)

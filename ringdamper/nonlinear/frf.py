@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
+from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes, structural_damping
 from ringdamper.nonlinear.continuation import StepControl, arclength
 from ringdamper.nonlinear.forced import ForcedProblem
 from ringdamper.nonlinear.fourier import default_nt
@@ -76,6 +76,11 @@ class FRF:
     growth: np.ndarray | None = None
     stable: np.ndarray | None = None
 
+    def harmonics(self, j: int) -> list:
+        """Harmonics ``Q_h = Φ_h η_h`` (complex, ``h = 0..H``) of every DoF at branch point ``j``."""
+        model = self.problem.model
+        return [m.Phi @ e for m, e in zip(model.modal, self.points[j].payload.eta)]
+
 
 @dataclass
 class Peak:
@@ -110,7 +115,8 @@ def forced_response(structure: Structure, contacts: FrictionContacts, gamma: flo
     lo, hi = sorted((omega_start, omega_end))
     explicit = pole_modes(structure, H, lo * (1 - pole_band), hi * (1 + pole_band)) \
         if pole_band > 0 else None
-    damping = [structure.modal(h).damping(zeta_s) for h in range(H + 1)]
+    contacts = contacts.for_pairs(structure.npairs)
+    damping = structural_damping(structure, H, zeta_s)
     model = CondensedHBM(structure, contacts, H, nt, explicit=explicit, damping=damping,
                          forced=True, gamma=gamma)
     problem = ForcedProblem(model)

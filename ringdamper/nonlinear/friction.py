@@ -30,6 +30,7 @@ so ``∂w_k/∂c = ∂(d_s ∓ r_s)/∂c``. For the Coulomb law the derivative i
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -38,6 +39,9 @@ from ringdamper.fem.contact_law import spring_diagonal, stuck_springs
 from ringdamper.nonlinear.fourier import Fourier
 
 LAWS = ("jenkins", "coulomb")
+
+#: per-pair parameters of :class:`FrictionContacts`
+PARAMETERS = ("kn", "kt", "mu", "N0", "gap")
 
 
 @dataclass(frozen=True)
@@ -57,10 +61,18 @@ class FrictionContacts:
     law: str = "jenkins"
 
     def __post_init__(self):
-        arrays = np.broadcast_arrays(*(np.atleast_1d(np.asarray(getattr(self, k), float))
-                                       for k in ("kn", "kt", "mu", "N0", "gap")))
-        for k, a in zip(("kn", "kt", "mu", "N0", "gap"), arrays):
-            object.__setattr__(self, k, np.array(a))
+        values = {k: np.atleast_1d(np.asarray(getattr(self, k), float)) for k in PARAMETERS}
+        for k, a in values.items():
+            if a.ndim != 1:
+                raise ValueError(f"FrictionContacts.{k}: expected a scalar or a 1-D array (one value per "
+                                 f"contact pair), got shape {np.shape(getattr(self, k))}")
+        per_pair = {k: a.size for k, a in values.items() if a.size > 1}
+        if len(set(per_pair.values())) > 1:
+            raise ValueError("FrictionContacts: parameters given per pair disagree on the number of pairs: "
+                             + ", ".join(f"{k} has {n}" for k, n in per_pair.items()))
+        npairs = max(per_pair.values(), default=1)
+        for k, a in values.items():
+            object.__setattr__(self, k, np.array(np.broadcast_to(a, (npairs,))))
         if self.law not in LAWS:
             raise ValueError(f"law must be one of {LAWS}, got {self.law!r}")
         if np.any(self.kn <= 0) or np.any(self.kt <= 0):
@@ -73,6 +85,16 @@ class FrictionContacts:
     @property
     def npairs(self) -> int:
         return self.kn.size
+
+    def for_pairs(self, npairs: int) -> "FrictionContacts":
+        """These parameters on ``npairs`` pairs: parameters given once (scalars) hold for every pair;
+        parameters given per pair must be ``npairs`` of them (``ValueError`` naming the parameter)."""
+        if self.npairs == npairs:
+            return self
+        if self.npairs != 1:
+            raise ValueError(f"FrictionContacts: parameters given for {self.npairs} contact pairs, the "
+                             f"structure's B has {npairs} pairs ({3 * npairs} rows: n, t1, t2 per pair)")
+        return dataclasses.replace(self, **{k: np.repeat(getattr(self, k), npairs) for k in PARAMETERS})
 
     def static_force(self) -> np.ndarray:
         """Contact force at d = 0 (the static equilibrium), shape ``(npairs, 3)``: ``(N0, 0, 0)``."""

@@ -1,11 +1,12 @@
 """Time-domain reference for the EPMC: shooting on the autonomous system (no harmonic balance).
 
-    M q̈ + K q + Bᵀ (λ(q, w) − λ_static) − ξ M q̇ = 0,      ξ = 2 ζ ω,
+    M q̈ + (C − ξ M) q̇ + K q + Bᵀ (λ(q, w) − λ_static) = 0,      ξ = 2 ζ ω,
 
 with the 3-D Jenkins element of :mod:`ringdamper.nonlinear.friction` (normal spring
 ``N = max(0, N0 + kn (d_n − gap))``, per tangential direction a spring ``kt`` in series with a
 Coulomb slider ``w``, slip limit ``μ N``). ``q`` is measured from the static equilibrium, where
-``λ_static = (N0, 0, 0)`` is balanced by the static loads (as in the HBM).
+``λ_static = (N0, 0, 0)`` is balanced by the static loads (as in the HBM). ``C`` is the structure's
+own damping (:meth:`Structure.damping_matrix`, zero if it has none), as in the EPMC.
 
 Integrator (fixed step ``Δt = T / n_steps``, ``T = 2π/ω``): classical RK4 on ``(q, q̇)`` with the
 slider frozen at its value ``w_k`` at the step start and the force of each stage taken through
@@ -52,8 +53,7 @@ class JenkinsTimeModel:
         if contacts.law != "jenkins":
             raise ValueError(f"contacts.law must be 'jenkins' for the time-domain model, got "
                              f"{contacts.law!r}")
-        if contacts.npairs != structure.npairs:
-            raise ValueError("contact parameters and structure disagree on the number of pairs")
+        contacts = contacts.for_pairs(structure.npairs)
         hd = structure.harmonics[0]
         self.M, self.K = np.asarray(hd.M, float), np.asarray(hd.K, float)
         self.n, self.npairs = self.M.shape[0], contacts.npairs
@@ -61,6 +61,8 @@ class JenkinsTimeModel:
         self.Bn, self.Bt = B[:, 0], B[:, 1:]                  # (np, n), (np, 2, n)
         self.c = contacts
         self.MinvK = np.linalg.solve(self.M, self.K)
+        C = structure.damping_matrix(0)                       # the structure's own damping, if any
+        self.MinvC = np.zeros_like(self.M) if C is None else np.linalg.solve(self.M, np.real(C))
         self.MinvBT = np.linalg.solve(self.M, B.reshape(-1, self.n).T).reshape(self.n, -1, 3)
         self.static = contacts.static_force()[:, 0]
         self.nx = 2 * self.n + 2 * self.npairs                # state [q, q̇, w]
@@ -174,10 +176,10 @@ def _step(model: JenkinsTimeModel, x, S, xi, dt, ddt):
             dX = S[:2 * n] + node * (dt * dks[-1] + np.outer(ks[-1], ddt)) if dks else S[:2 * n]
             dk = np.empty_like(dX)
             dk[:n] = dX[n:]
-            dk[n:] = -(model.MinvK + f_q) @ dX[:n] + xi * dX[n:] - f_w @ S[2 * n:]
+            dk[n:] = -(model.MinvK + f_q) @ dX[:n] + xi * dX[n:] - model.MinvC @ dX[n:] - f_w @ S[2 * n:]
             dk[n:, nx + 1] += vs                                  # ∂/∂ξ
             dks.append(dk)
-        ks.append(np.concatenate([vs, -model.MinvK @ qs - f + xi * vs]))
+        ks.append(np.concatenate([vs, -model.MinvK @ qs - f + xi * vs - model.MinvC @ vs]))
     incr = sum(c * k for c, k in zip(RK4_WEIGHTS, ks))
     qv = x[:2 * n] + dt * incr
     if S is None:

@@ -10,9 +10,17 @@ Harmonic 0 is ND 0 and real. A non-cyclic structure uses the same real matrices 
 
 Each harmonic is diagonalised once (``K_h φ = ω_r² M_h φ``, ``φᴴ M_h φ = 1``, all modes): this is
 what the exact condensation of :mod:`ringdamper.nonlinear.condensed` sums over.
+
+Structural damping is given per harmonic either as a viscous matrix ``C_h`` (diagonal in the modes:
+``φ_rᴴ C_h φ_s = 0`` for ``r ≠ s``, e.g. Rayleigh ``a M + b K``) or as modal damping ratios ``ζ_r`` of
+the modes of ``(K_h, M_h)`` (``C_h = M_h Φ diag(2 ζ_r ω_r) Φᴴ M_h``); either gives the modal
+coefficients ``c_r = φ_rᴴ C_h φ_r`` that every analysis uses (:meth:`ModalHarmonic.damping`).
+Every matrix and vector is checked at construction: the message names the argument, the shape
+expected and the shape given.
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
@@ -26,7 +34,9 @@ from ringdamper.fem.cyclic import interblade_phase, nodal_diameter  # noqa: F401
 class HarmonicData:
     """Linear data of one harmonic: ``M``, ``K`` (n × n, Hermitian), ``B`` (p × n, contact relative
     coordinates), ``response`` (n,) row giving the response DoF, ``force`` (n,) forcing vector
-    (None: unforced), ``C`` optional damping matrix (must be diagonal in the modes)."""
+    (None: unforced), and optionally the structural damping: ``C`` (n × n, diagonal in the modes)
+    or ``zeta``, modal damping ratios of the modes of ``(K, M)`` (scalar or one per mode, ascending
+    frequency), not both."""
 
     M: np.ndarray
     K: np.ndarray
@@ -34,6 +44,31 @@ class HarmonicData:
     response: np.ndarray
     force: np.ndarray | None = None
     C: np.ndarray | None = None
+    zeta: float | np.ndarray | None = None
+
+    def check(self, name: str) -> None:
+        """Shapes and values of every field against ``n`` = rows of ``M``; ``ValueError`` naming
+        ``name.field``, the shape expected and the shape given."""
+        n = np.shape(self.M)[0] if np.ndim(self.M) == 2 else None
+        if n is None or np.shape(self.M) != (n, n):
+            raise ValueError(f"{name}.M: expected a square matrix (n, n), got shape {np.shape(self.M)}")
+        expected = {"K": (n, n), "response": (n,), "force": (n,), "C": (n, n)}
+        for field_name, shape in expected.items():
+            value = getattr(self, field_name)
+            if value is not None and np.shape(value) != shape:
+                raise ValueError(f"{name}.{field_name}: expected shape {shape} (n = {n} DoFs, from M), "
+                                 f"got {np.shape(value)}")
+        if np.ndim(self.B) != 2 or np.shape(self.B)[1] != n:
+            raise ValueError(f"{name}.B: expected shape (p, {n}) (p contact coordinates, n = {n} DoFs), "
+                             f"got {np.shape(self.B)}")
+        if self.C is not None and self.zeta is not None:
+            raise ValueError(f"{name}: give the damping as C or as modal ratios zeta, not both")
+        if self.zeta is not None:
+            if np.shape(self.zeta) not in ((), (n,)):
+                raise ValueError(f"{name}.zeta: expected a scalar or shape ({n},) (one ratio per mode), "
+                                 f"got {np.shape(self.zeta)}")
+            if np.any(np.asarray(self.zeta, float) < 0):
+                raise ValueError(f"{name}.zeta: modal damping ratios must be >= 0")
 
 
 @dataclass
@@ -53,9 +88,13 @@ class ModalHarmonic:
     zero: np.ndarray = field(repr=False)
 
     def damping(self, zeta_s: float | np.ndarray = 0.0) -> np.ndarray:
-        """Modal damping coefficients ``c_r`` (``q̇`` term ``c_r η̇_r``): from ``C`` if given,
-        else ``2 ζ_s ω_r`` (modal damping ratio ζ_s, scalar or per mode)."""
+        """Modal damping coefficients ``c_r`` (``q̇`` term ``c_r η̇_r``): the structure's (``C`` or
+        modal ratios) if it has them, else ``2 ζ_s ω_r`` (modal damping ratio ζ_s, scalar or per
+        mode). A structure with its own damping and a non-zero ``zeta_s`` is ambiguous: raises."""
         if self.c is not None:
+            if np.any(np.asarray(zeta_s) != 0):
+                raise ValueError("zeta_s: the structure has its own damping (C or modal ratios); "
+                                 "give one of the two, not both")
             return self.c
         return 2.0 * np.asarray(zeta_s, float) * np.sqrt(self.w2)
 
@@ -68,16 +107,15 @@ class Structure:
         self.harmonics = list(harmonics)
         self.zero_tol = zero_tol
         self.n_sectors, self.engine_order = n_sectors, engine_order
+        for h, hd in enumerate(self.harmonics):
+            hd.check(f"harmonic {h}")
         p = {hd.B.shape[0] for hd in self.harmonics}
         if len(p) != 1:
-            raise ValueError("every harmonic must map onto the same contact coordinates")
+            raise ValueError(f"B: every harmonic must map onto the same contact coordinates, got "
+                             f"{[hd.B.shape[0] for hd in self.harmonics]} rows")
         self.p = p.pop()
         if self.p % 3:
-            raise ValueError("B must have 3 rows (n, t1, t2) per contact pair")
-        for h, hd in enumerate(self.harmonics):
-            n = hd.M.shape[0]
-            if hd.K.shape != (n, n) or hd.B.shape[1] != n or hd.response.shape != (n,):
-                raise ValueError(f"harmonic {h}: inconsistent matrix shapes")
+            raise ValueError(f"B: expected 3 rows (n, t1, t2) per contact pair, got {self.p} rows")
         h0 = self.harmonics[0]
         if any(np.iscomplexobj(a) and np.any(np.abs(np.imag(a)) > 0)
                for a in (h0.M, h0.K, h0.B)):
@@ -93,13 +131,43 @@ class Structure:
     def npairs(self) -> int:
         return self.p // 3
 
+    @property
+    def damped(self) -> bool:
+        """The structure carries its own damping (``C`` or modal ratios) in some harmonic."""
+        return any(hd.C is not None or hd.zeta is not None for hd in self.harmonics)
+
+    def damping_matrix(self, h: int) -> np.ndarray | None:
+        """Viscous damping matrix of harmonic ``h``: ``C`` as given, or from the modal ratios
+        ``C = M Φ diag(2 ζ_r ω_r) Φᴴ M`` (None if undamped)."""
+        hd = self.harmonics[h]
+        if hd.zeta is None:
+            return hd.C
+        m = self.modal(h)
+        MPhi = hd.M @ m.Phi
+        return (MPhi * m.c) @ MPhi.conj().T
+
+    def with_response(self, response: np.ndarray) -> "Structure":
+        """The same structure observed through another response row: ``response`` (n,), any DoF
+        (a unit row) or linear combination of DoFs, for every harmonic, or one row per harmonic
+        ``(H_max + 1, n)``. Results report ``response · Q_h`` (``q_res_h1``, ``q_h1``, the peaks); the
+        modes are shared, not computed again."""
+        rows = np.asarray(response)
+        rows = np.broadcast_to(rows, (len(self.harmonics),) + rows.shape) if rows.ndim == 1 else rows
+        if rows.ndim != 2 or rows.shape[0] != len(self.harmonics):
+            raise ValueError(f"response: expected shape (n,) or ({len(self.harmonics)}, n), got {np.shape(response)}")
+        data = [dataclasses.replace(hd, response=np.array(r)) for hd, r in zip(self.harmonics, rows)]
+        out = Structure(data, zero_tol=self.zero_tol, n_sectors=self.n_sectors, engine_order=self.engine_order)
+        out._eig_cache = self._eig_cache
+        return out
+
     @classmethod
-    def real(cls, M, K, B, response, force, H: int, C=None, zero_tol: float = 1e-9) -> "Structure":
+    def real(cls, M, K, B, response, force, H: int, C=None, zeta=None,
+             zero_tol: float = 1e-9) -> "Structure":
         """Non-cyclic structure: the same real matrices for every harmonic, ``force`` on
-        harmonic 1 only."""
-        n = M.shape[0]
+        harmonic 1 only; damping ``C`` or modal ratios ``zeta`` (module docstring)."""
+        n = np.shape(M)[0] if np.ndim(M) == 2 else 0
         zero = np.zeros(n)
-        data = [HarmonicData(M, K, B, response, zero if h != 1 else force, C) for h in range(H + 1)]
+        data = [HarmonicData(M, K, B, response, zero if h != 1 else force, C, zeta) for h in range(H + 1)]
         return cls(data, zero_tol=zero_tol)
 
     @classmethod
@@ -126,12 +194,16 @@ class Structure:
             raise ValueError(f"harmonic {h}: K_h is not positive semi-definite")
         f = Phi.conj().T @ hd.force if hd.force is not None else np.zeros(Phi.shape[1], complex)
         c = None
-        if hd.C is not None:
+        if hd.zeta is not None:
+            c = 2.0 * np.broadcast_to(np.asarray(hd.zeta, float), w2.shape) * np.sqrt(w2)
+        elif hd.C is not None:
             Cm = Phi.conj().T @ hd.C @ Phi
             off = Cm - np.diag(np.diag(Cm))
             if np.max(np.abs(off)) > 1e-8 * max(np.max(np.abs(Cm)), np.finfo(float).tiny):
-                raise ValueError(f"harmonic {h}: C is not diagonal in the modes; the exact modal "
-                                 "condensation needs modal (e.g. proportional) damping")
+                raise ValueError(f"harmonic {h}.C: not diagonal in the modes of (K, M) (largest "
+                                 f"off-diagonal modal entry {np.max(np.abs(off)):.3g}); the exact modal "
+                                 "condensation needs modal damping, e.g. Rayleigh a M + b K, or "
+                                 "modal ratios zeta")
             c = np.real(np.diag(Cm))
         mh = ModalHarmonic(h=h, w2=w2, Phi=Phi, Psi=hd.B @ Phi, f=f, res=hd.response @ Phi,
                            c=c, zero=zero)

@@ -200,6 +200,14 @@ def _dnnm(config: dict) -> dict:
     return run(config)
 
 
+def _coulomb(config: dict) -> dict:
+    """The Coulomb law's AFT on the default ring's backbone states, against the former march
+    (ringdamper.bench.coulomb)."""
+    from ringdamper.bench.coulomb import run
+
+    return run(config)
+
+
 def _surrogate(config: dict) -> dict:
     """Kriging (120 models) + 50³ grid + Sobol on synthetic data of the campaign's size."""
     from ringdamper.bench.surrogate import run
@@ -208,7 +216,7 @@ def _surrogate(config: dict) -> dict:
 
 
 BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "geometry_chain": _geometry_chain,
-              "reduction": _reduction, "dnnm": _dnnm, "dynamics_synthetic": _dynamics_synthetic,
+              "reduction": _reduction, "dnnm": _dnnm, "coulomb": _coulomb, "dynamics_synthetic": _dynamics_synthetic,
               "static_synthetic": _static_synthetic,
               "mesh_convergence": _mesh_convergence, "surrogate": _surrogate}
 

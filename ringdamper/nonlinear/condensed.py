@@ -22,7 +22,7 @@ state (slider at zero) at every evaluation, so a solution depends on its own unk
 the continuation path: a pair that slips during the period has a unique periodic state anyway,
 and a pair that sticks throughout keeps the static slider position projected onto the band of
 positions that stick, ``[max_k(d_k − r_k), min_k(d_k + r_k)]``, i.e. it is pushed only as far as
-the motion forces it (:func:`ringdamper.nonlinear.friction.play_operator`), independently of where
+the motion forces it (:func:`ringdamper.nonlinear.play.play_operator`), independently of where
 the period starts. (Carrying the last accepted point's slider state instead puts every pair that the
 growing amplitude pushes exactly on its stick/slip kink at every accepted point; Newton then
 cycles between the two sides.)

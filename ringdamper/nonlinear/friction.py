@@ -36,7 +36,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ringdamper.fem.contact_law import spring_diagonal, stuck_springs
+from ringdamper.nonlinear.coulomb import coulomb_slider
 from ringdamper.nonlinear.fourier import Fourier
+from ringdamper.nonlinear.play import play_operator
 
 LAWS = ("jenkins", "coulomb")
 
@@ -159,44 +161,6 @@ def contact_aft(contacts: FrictionContacts, fourier: Fourier, d: np.ndarray,
     return ContactAFT(lam=lam, jac=jac, normal=N, tangential=T, memory=w_end)
 
 
-def play_operator(lo: np.ndarray, hi: np.ndarray, w0: np.ndarray | float = 0.0):
-    """Periodic steady state of the play operator ``w_k = clip(w_{k−1}, lo_k, hi_k)``.
-
-    ``lo ≤ hi`` have shape ``(..., Nt)``, ``w0`` is the memory before the first period. Returns
-    ``w`` and ``src`` (same shape): ``src = −1`` if ``w_k`` is the memory, ``s`` if it is ``lo_s``,
-    ``Nt + s`` if it is ``hi_s``. Clamps compose as ``clip(clip(x, a1, b1), a2, b2) =
-    clip(x, clip(a1, a2, b2), clip(b1, a2, b2))``; a Hillis–Steele scan builds the prefix maps.
-    """
-    nt = lo.shape[-1]
-    a, b = lo.copy(), hi.copy()
-    sa = np.broadcast_to(np.arange(nt), lo.shape).copy()
-    sb = sa + nt
-    step = 1
-    while step < nt:
-        ea, eb, esa, esb = a[..., :-step], b[..., :-step], sa[..., :-step], sb[..., :-step]
-        la, lb, lsa, lsb = a[..., step:], b[..., step:], sa[..., step:], sb[..., step:]
-        na, nsa = _clip_with_source(ea, esa, la, lb, lsa, lsb)
-        nb, nsb = _clip_with_source(eb, esb, la, lb, lsa, lsb)
-        a[..., step:], b[..., step:], sa[..., step:], sb[..., step:] = na, nb, nsa, nsb
-        step *= 2
-    w0 = np.broadcast_to(np.asarray(w0, float), lo.shape[:-1])
-    start, s_start = _clip_with_source(w0, np.full(w0.shape, -1), a[..., -1], b[..., -1],
-                                       sa[..., -1], sb[..., -1])
-    w, src = _clip_with_source(start[..., None], s_start[..., None], a, b, sa, sb)
-    if not np.array_equal(w[..., -1], start):       # one more period must reproduce the start
-        raise RuntimeError("play operator: the marched state is not periodic")
-    return w, src
-
-
-def _clip_with_source(x, sx, lo, hi, slo, shi):
-    """``clip(x, lo, hi)`` and its source. A tie goes to the bound: a value equal to a bound
-    moves with it (the memory, source −1, is constant and would drop that derivative when the
-    march restarts from its own periodic state)."""
-    below, above = x <= lo, x >= hi
-    return (np.where(below, lo, np.where(above, hi, x)),
-            np.where(below, slo, np.where(above, shi, sx)))
-
-
 def _jenkins(cp, E, d, r, closed, jacobian, memory):
     """Two independent Jenkins elements: forces ``(np, 2, Nt)`` and ``∂T/∂c`` ``(np, 2, Nt, 3C)``
     for the coefficients of the basis ``E`` (Nt × C: all slots, or the mean only)."""
@@ -220,162 +184,18 @@ def _jenkins(cp, E, d, r, closed, jacobian, memory):
 
 
 def _coulomb(cp, E, d, r, closed, jacobian, memory, tol, max_periods):
-    """Isotropic Coulomb slider, marched period after period until the state at the period start
-    repeats; derivatives are carried along in forward mode (:class:`_Dual`)."""
-    npairs, _, nt = d.shape
-    C = E.shape[1]
-    zero = np.zeros((npairs, 3 * C)) if jacobian else None
-
-    def signal(k):                                       # d_t1, d_t2 and r at sample k, with tangents
-        if not jacobian:
-            return _Dual(d[:, 0, k]), _Dual(d[:, 1, k]), _Dual(r[:, k])
-        t1, t2, tr = zero.copy(), zero.copy(), zero.copy()
-        t1[:, C:2 * C] = E[k]
-        t2[:, 2 * C:] = E[k]
-        tr[:, :C] = ((cp.mu * cp.kn / cp.kt) * closed[:, k])[:, None] * E[k]
-        return _Dual(d[:, 0, k], t1), _Dual(d[:, 1, k], t2), _Dual(r[:, k], tr)
-
-    samples = [signal(k) for k in range(nt)]
-    w = (_Dual(memory[:, 0].astype(float), zero), _Dual(memory[:, 1].astype(float), zero))
-    prev = samples[-1]
-    scale = np.max(np.abs(d)) + np.max(r) + np.finfo(float).tiny
-    W = np.empty((npairs, 2, nt))
-    dW = np.empty((npairs, 2, nt, 3 * C)) if jacobian else None
-    for _ in range(max_periods):
-        start = w
-        for k in range(nt):
-            w = _tractrix_step(w, prev, samples[k])
-            prev = samples[k]
-            W[:, 0, k], W[:, 1, k] = w[0].v, w[1].v
-            if jacobian:
-                dW[:, 0, k], dW[:, 1, k] = w[0].t, w[1].t
-        change = max(np.max(np.abs(w[i].v - start[i].v)) for i in range(2)) / scale
-        if jacobian:
-            change = max(change, max(np.max(np.abs(w[i].t - start[i].t)) for i in range(2))
-                         / (1.0 + np.max(np.abs(dW))))
-        if change <= tol:
-            break
-    else:
-        raise RuntimeError(f"Coulomb hysteresis not periodic after {max_periods} periods")
+    """Isotropic Coulomb slider (:func:`ringdamper.nonlinear.coulomb.coulomb_slider`): forces
+    ``(np, 2, Nt)`` and ``∂T/∂c`` ``(np, 2, Nt, 3C)``."""
+    W, dW = coulomb_slider(cp.mu * cp.kn / cp.kt, E, d, r, closed, bool(jacobian), memory, tol, max_periods)
     kt = cp.kt[:, None, None]
     T = kt * (d - W)
     if not jacobian:
         return T, None
+    nt, C = E.shape
     dd = np.zeros((2, nt, 3 * C))
     dd[0, :, C:2 * C] = E
     dd[1, :, 2 * C:] = E
     return T, kt[..., None] * (dd[None] - dW)
-
-
-def _tractrix_step(w, prev, cur):
-    """Exact sweeping of the slider ``w`` by the disc of radius ``r_k`` whose centre moves on the
-    straight segment ``d_{k−1} → d_k``: projection on the shrunk disc, stick until the disc edge
-    reaches the slider (travel ``s1``), then a tractrix ``tan(ψ/2) = tan(ψ1/2) e^{−(s−s1)/r}``."""
-    (cx0, cy0, _), (cx1, cy1, r) = prev, cur
-    zx, zy = w[0] - cx0, w[1] - cy0
-    rho = _sqrt(zx * zx + zy * zy)
-    shrink = rho.v > r.v
-    fac = _where(shrink, r / _where(shrink, rho, 1.0), 1.0)
-    zx, zy = zx * fac, zy * fac
-    dx, dy = cx1 - cx0, cy1 - cy0
-    L = _sqrt(dx * dx + dy * dy)
-    moving = L.v > 0
-    Ls = _where(moving, L, 1.0)
-    ex, ey = dx / Ls, dy / Ls
-    p = zx * ex + zy * ey
-    px, py = zx - p * ex, zy - p * ey                    # part of z normal to the motion
-    root = _sqrt(_maximum0(r * r - px * px - py * py))
-    s1 = p + root
-    slip = moving & (s1.v < L.v) & (r.v > 0)
-    rs = _where(slip, r, 1.0)
-    decay = (-(L - s1) / rs).exp()
-    t_over = decay / _where(slip, rs + root, 1.0)       # tan(ψ/2) / |p_perp|
-    t2 = t_over * t_over * (px * px + py * py)
-    cos_psi = (1.0 - t2) / (1.0 + t2)
-    lateral = 2.0 * rs * t_over / (1.0 + t2)
-    sx = cx1 - rs * cos_psi * ex + lateral * px
-    sy = cy1 - rs * cos_psi * ey + lateral * py
-    sep = r.v == 0
-    wx = _where(sep, cx1, _where(slip, sx, cx0 + zx))
-    wy = _where(sep, cy1, _where(slip, sy, cy0 + zy))
-    return wx, wy
-
-
-class _Dual:
-    """Value ``v`` ``(n,)`` with forward-mode tangent ``t`` ``(n, nvar)`` (None: values only)."""
-
-    __slots__ = ("v", "t")
-
-    def __init__(self, v, t=None):
-        self.v, self.t = v, t
-
-    def _lift(self, o):
-        return o if isinstance(o, _Dual) else _Dual(np.broadcast_to(o, self.v.shape), None)
-
-    def __add__(self, o):
-        o = self._lift(o)
-        return _Dual(self.v + o.v, _addt(self.t, o.t))
-
-    __radd__ = __add__
-
-    def __neg__(self):
-        return _Dual(-self.v, None if self.t is None else -self.t)
-
-    def __sub__(self, o):
-        return self + (-self._lift(o))
-
-    def __rsub__(self, o):
-        return (-self) + o
-
-    def __mul__(self, o):
-        o = self._lift(o)
-        return _Dual(self.v * o.v, _addt(_scale(self.t, o.v), _scale(o.t, self.v)))
-
-    __rmul__ = __mul__
-
-    def __truediv__(self, o):
-        o = self._lift(o)
-        q = self.v / o.v
-        return _Dual(q, _addt(_scale(self.t, 1.0 / o.v), _scale(o.t, -q / o.v)))
-
-    def __rtruediv__(self, o):
-        return self._lift(o) / self
-
-    def exp(self):
-        e = np.exp(self.v)
-        return _Dual(e, _scale(self.t, e))
-
-
-def _addt(a, b):
-    if a is None:
-        return b
-    return a if b is None else a + b
-
-
-def _scale(t, s):
-    return None if t is None else t * s[:, None]
-
-
-def _sqrt(x):
-    s = np.sqrt(x.v)
-    return _Dual(s, _scale(x.t, 0.5 / np.where(s > 0, s, np.inf)))
-
-
-def _maximum0(x):
-    pos = x.v > 0
-    return _Dual(np.where(pos, x.v, 0.0), _scale(x.t, pos.astype(float)))
-
-
-def _where(mask, a, b):
-    a = a if isinstance(a, _Dual) else _Dual(np.broadcast_to(float(a), mask.shape))
-    b = b if isinstance(b, _Dual) else _Dual(np.broadcast_to(float(b), mask.shape))
-    if a.t is None and b.t is None:
-        t = None
-    else:
-        ta = a.t if a.t is not None else 0.0
-        tb = b.t if b.t is not None else 0.0
-        t = np.where(mask[:, None], ta, tb)
-    return _Dual(np.where(mask, a.v, b.v), t)
 
 
 def dissipated_energy(d: np.ndarray, lam: np.ndarray) -> np.ndarray:

@@ -66,8 +66,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ringdamper.nonlinear.elements import Elements
 from ringdamper.nonlinear.fourier import Fourier, real_block, real_vector, to_complex
-from ringdamper.nonlinear.friction import ContactAFT, FrictionContacts, contact_aft
+from ringdamper.nonlinear.friction import ContactAFT, FrictionContacts
 from ringdamper.nonlinear.structure import Structure
 
 
@@ -113,7 +114,7 @@ class CondensedHBM:
     docstring, *soft hold*).
     """
 
-    def __init__(self, structure: Structure, contacts: FrictionContacts, H: int, nt: int,
+    def __init__(self, structure: Structure, contacts: FrictionContacts | Elements, H: int, nt: int,
                  explicit=None, damping=None, forced: bool = False, gamma: float = 0.0,
                  gauge_tol: float = 1e-2):
         if H > structure.H_max:
@@ -156,7 +157,7 @@ class CondensedHBM:
         self.eta_ref = np.zeros(self.zero_modes.size)
         self.pinned = np.zeros((self.zero_modes.size, 0))   # directions gauged for good
         self.seen = np.zeros((self.zero_modes.size, 0))     # lost holds seen since the last accept
-        kscale = max(np.max(contacts.kn), np.max(contacts.kt))
+        kscale = contacts.stiffness_scale()
         self._null_tol = gauge_tol * kscale * (np.linalg.norm(PsiZ, 2) if self.zero_modes.size
                                                else 0.0)
 
@@ -240,8 +241,8 @@ class CondensedHBM:
         (:class:`CoreJacobian`) and the ω and ξ columns."""
         H, C, p, npairs = self.H, self.C, self.p, self.npairs
         d = y[:self.n_d].reshape(C, p)
-        aft = contact_aft(self.contacts, self.fourier, d.reshape(C, npairs, 3).transpose(1, 2, 0),
-                          jacobian=True if jacobian else ("dc" if self.zero_modes.size else False))
+        aft = self.contacts.aft(self.fourier, d.reshape(C, npairs, 3).transpose(1, 2, 0),
+                                jacobian=True if jacobian else ("dc" if self.zero_modes.size else False))
         lam = aft.lam.transpose(2, 0, 1).reshape(C, p).copy()
         lam[0] -= self.static
         D, Lam = to_complex(d, H), to_complex(lam, H)

@@ -31,6 +31,7 @@ import numpy as np
 
 from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes, structural_damping
 from ringdamper.nonlinear.continuation import ContinuationPoint, NaturalResult, StepControl, natural_then_arclength
+from ringdamper.nonlinear.elements import Elements
 from ringdamper.nonlinear.fourier import default_nt
 from ringdamper.nonlinear.friction import FrictionContacts
 from ringdamper.nonlinear.jacobian import bordered
@@ -157,7 +158,7 @@ def default_steps() -> StepControl:
     return StepControl(initial=0.2, minimum=1e-4, maximum=0.5, corrector=CORRECTOR_JACOBIANS)
 
 
-def epmc(structure: Structure, contacts: FrictionContacts, alpha, *, H: int = 1,
+def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, H: int = 1,
          nt: int | None = None, mode: int = 0, omega_target: float | None = None,
          pole_band: float = 0.1, tol: float = 1e-8, max_iter: int = 20,
          steps: StepControl | None = None, gauge_reference: np.ndarray | None = None,
@@ -223,35 +224,18 @@ def _stuck_mode(structure, contacts, mode, omega_target):
 
 
 def linear_limit(structure, contacts, phi):
-    """Smallest modal amplitude at which the linear stuck mode ``phi`` would make a preloaded
-    pair slip (``kt |d_t| = μ N0``) or open (``kn |d_n| = N0``), or a gapped pair close."""
+    """Smallest modal amplitude at which the linear stuck mode ``phi`` meets a discrete event of the
+    nonlinearity (a preloaded pair slipping or opening, a gap closing: ``contacts.linear_limit``)."""
     contacts = contacts.for_pairs(structure.npairs)
-    d = np.abs(structure.harmonics[1].B @ phi).reshape(-1, 3)
-    with np.errstate(divide="ignore"):
-        slip = contacts.mu * contacts.N0 / (contacts.kt * np.max(d[:, 1:], axis=1))
-        open_ = np.where(contacts.N0 > 0, contacts.N0 / contacts.kn, contacts.gap) / d[:, 0]
-    lim = np.min(np.r_[slip[contacts.N0 > 0], open_, np.inf])
-    return lim if np.isfinite(lim) and lim > 0 else np.inf
+    return contacts.linear_limit((structure.harmonics[1].B @ phi).reshape(-1, 3))
 
 
 def stick_limit(structure, contacts, phi) -> float:
     """Largest modal amplitude up to which the linear stuck mode ``phi`` is an exact solution of the
-    contact law at every instant: no preloaded pair slips or opens, no gapped pair closes (``inf``
-    if none ever does). With the harmonic-1 contact amplitudes ``c = B₁φ`` per pair, ``d(t) = α
-    Re(c e^{iθ})``, a Jenkins direction j sticks while ``kt |d_j(t)| ≤ μ (N0 + kn d_n(t))`` for all
-    θ, i.e. ``α max_± |kt c_j ± μ kn c_n| ≤ μ N0`` (the normal force varies with the motion); the
-    normal force stays positive while ``α kn |c_n| < N0``; a gap stays open while ``α |c_n| < gap``.
-    A pair without friction (μ = 0) carries no tangential force in either state."""
+    nonlinearity at every instant (``contacts.stick_limit`` of the harmonic-1 amplitudes ``c = B₁φ``
+    per pair or element; ``inf`` if it always is, 0 if never)."""
     contacts = contacts.for_pairs(structure.npairs)
-    c = (structure.harmonics[1].B @ phi).reshape(-1, 3)
-    kn, kt, mu, n0 = contacts.kn, contacts.kt, contacts.mu, contacts.N0
-    load = np.maximum(np.abs(kt[:, None] * c[:, 1:] - (mu * kn * c[:, 0])[:, None]),
-                      np.abs(kt[:, None] * c[:, 1:] + (mu * kn * c[:, 0])[:, None])).max(axis=1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        slip = np.where((n0 > 0) & (mu > 0), mu * n0 / load, np.inf)
-        normal = np.where(n0 > 0, n0 / (kn * np.abs(c[:, 0])), contacts.gap / np.abs(c[:, 0]))
-    lim = float(np.min(np.r_[slip, normal, np.inf]))
-    return lim if lim > 0 else 0.0
+    return contacts.stick_limit((structure.harmonics[1].B @ phi).reshape(-1, 3))
 
 
 def _stuck_points(problem: EPMCProblem, phi, omega0: float, alpha) -> list:

@@ -34,6 +34,7 @@ from scipy.optimize import minimize_scalar
 
 from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes, structural_damping
 from ringdamper.nonlinear.continuation import StepControl, arclength
+from ringdamper.nonlinear.elements import Elements
 from ringdamper.nonlinear.forced import ForcedProblem
 from ringdamper.nonlinear.fourier import default_nt
 from ringdamper.nonlinear.friction import FrictionContacts
@@ -96,7 +97,7 @@ class Peak:
     z: np.ndarray = field(repr=False)
 
 
-def forced_response(structure: Structure, contacts: FrictionContacts, gamma: float,
+def forced_response(structure: Structure, contacts: FrictionContacts | Elements, gamma: float,
                     omega_start: float, omega_end: float, *, H: int = 1, nt: int | None = None,
                     zeta_s: float = 0.0, pole_band: float = 0.05, tol: float = 1e-8,
                     max_iter: int = 20, steps: StepControl | None = None,

@@ -98,6 +98,44 @@ class FrictionContacts:
                              f"structure's B has {npairs} pairs ({3 * npairs} rows: n, t1, t2 per pair)")
         return dataclasses.replace(self, **{k: np.repeat(getattr(self, k), npairs) for k in PARAMETERS})
 
+    def aft(self, fourier: Fourier, d: np.ndarray, jacobian: bool | str = True,
+            memory: np.ndarray | None = None) -> "ContactAFT":
+        """:func:`contact_aft` of these contacts (the interface the harmonic balance asks of a
+        nonlinearity, shared with :class:`ringdamper.nonlinear.elements.Elements`)."""
+        return contact_aft(self, fourier, d, jacobian, memory)
+
+    def stiffness_scale(self) -> float:
+        """The largest contact stiffness [N/m] (the scale of the rigid-body hold test)."""
+        return max(np.max(self.kn), np.max(self.kt))
+
+    def linear_limit(self, c: np.ndarray) -> float:
+        """Smallest amplitude factor at which the motion ``α |c|`` (``c`` ``(npairs, 3)``, harmonic 1
+        of a linear stuck mode) would make a preloaded pair slip (``kt |d_t| = μ N0``) or open
+        (``kn |d_n| = N0``), or a gapped pair close."""
+        d = np.abs(c)
+        with np.errstate(divide="ignore"):
+            slip = self.mu * self.N0 / (self.kt * np.max(d[:, 1:], axis=1))
+            open_ = np.where(self.N0 > 0, self.N0 / self.kn, self.gap) / d[:, 0]
+        lim = np.min(np.r_[slip[self.N0 > 0], open_, np.inf])
+        return lim if np.isfinite(lim) and lim > 0 else np.inf
+
+    def stick_limit(self, c: np.ndarray) -> float:
+        """Largest amplitude factor up to which ``d(θ) = α Re(c e^{iθ})`` (``c`` ``(npairs, 3)``)
+        keeps every pair on the linearised stuck law at every instant: no preloaded pair slips or opens,
+        no gapped pair closes (``inf`` if none ever does). A Jenkins direction j sticks while
+        ``kt |d_j(θ)| ≤ μ (N0 + kn d_n(θ))`` for all θ, i.e. ``α max_± |kt c_j ± μ kn c_n| ≤ μ N0`` (the
+        normal force varies with the motion); the normal force stays positive while ``α kn |c_n| <
+        N0``; a gap stays open while ``α |c_n| < gap``. A pair without friction (μ = 0) carries no
+        tangential force in either state."""
+        kn, kt, mu, n0 = self.kn, self.kt, self.mu, self.N0
+        load = np.maximum(np.abs(kt[:, None] * c[:, 1:] - (mu * kn * c[:, 0])[:, None]),
+                          np.abs(kt[:, None] * c[:, 1:] + (mu * kn * c[:, 0])[:, None])).max(axis=1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            slip = np.where((n0 > 0) & (mu > 0), mu * n0 / load, np.inf)
+            normal = np.where(n0 > 0, n0 / (kn * np.abs(c[:, 0])), self.gap / np.abs(c[:, 0]))
+        lim = float(np.min(np.r_[slip, normal, np.inf]))
+        return lim if lim > 0 else 0.0
+
     def static_force(self) -> np.ndarray:
         """Contact force at d = 0 (the static equilibrium), shape ``(npairs, 3)``: ``(N0, 0, 0)``."""
         lam = np.zeros((self.npairs, 3))

@@ -1,0 +1,244 @@
+"""Nonlinear elements on a user's structure, each acting through its own local coordinates.
+
+An element acts through ``k`` local coordinates ``u = wᵀ q`` (``w``: a vector of the structure's
+DoFs, or an ``(n, k)`` matrix) with the force ``wᵀ``-transposed back onto the DoFs, ``f_q = w f(u)``.
+In the harmonic balance its forces are evaluated by AFT: the harmonics of ``u`` sampled at ``Nt``
+instants, the force computed there, analysed back, and the analytic Jacobian
+``∂f_c/∂u_c' = F diag(∂f/∂u) E`` (memoryless elements) or through the play operator's sources
+(hysteretic ones). Forces are measured from the static state ``u = 0`` (the structure's equilibrium):
+an element must exert no force there.
+
+* :class:`CubicSpring` ``f = k3 u³`` (Duffing);
+* :class:`UnilateralSpring` ``f = k max(u − gap, 0)``, ``gap ≥ 0`` (a stop closing at ``u = gap``);
+* :class:`Jenkins` ``f = kt (u − s)``, slider ``s`` held while ``|f| < F_s`` (elastic dry friction, one
+  direction; the memory before the period is the static state ``s = 0``, as for the 3-D contact).
+
+:class:`Elements` gathers any number of them, of any kind, into the set the harmonic balance takes in
+place of the 3-D contact pairs (:class:`ringdamper.nonlinear.friction.FrictionContacts`): its ``B``
+(:attr:`Elements.B`) gives each element three rows of local coordinates (the ``k`` of its ``w``, the
+others zero, which carry no force), and it answers the questions the analyses ask of the contacts
+(forces and Jacobian, static force, stuck stiffness, amplitude up to which the system stays linear).
+"""
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+
+import numpy as np
+
+from ringdamper.nonlinear.fourier import Fourier
+from ringdamper.nonlinear.friction import ContactAFT, dissipated_energy
+from ringdamper.nonlinear.play import play_operator
+
+#: local coordinates an element may have (the rows each element gets in :attr:`Elements.B`)
+MAX_COORDINATES = 3
+
+
+class Element(ABC):
+    """One nonlinear element acting through the local coordinates ``u = wᵀ q``."""
+
+    def __init__(self, w, **parameters):
+        w = np.asarray(w, float)
+        self.w = w[:, None] if w.ndim == 1 else w
+        if self.w.ndim != 2 or not 1 <= self.w.shape[1] <= MAX_COORDINATES:
+            raise ValueError(f"{type(self).__name__}.w: expected shape (n,) or (n, k) with k <= "
+                             f"{MAX_COORDINATES}, got {np.shape(w)}")
+        for name, value in parameters.items():
+            if np.shape(value) != ():
+                raise ValueError(f"{type(self).__name__}.{name}: expected a scalar, got shape {np.shape(value)}")
+            if not np.isfinite(value) or value < 0:
+                raise ValueError(f"{type(self).__name__}.{name}: expected a finite value >= 0, got {value}")
+            setattr(self, name, float(value))
+
+    @property
+    def n_local(self) -> int:
+        """Number of local coordinates."""
+        return self.w.shape[1]
+
+    @abstractmethod
+    def aft(self, fourier: Fourier, u: np.ndarray, jacobian: bool) -> tuple[np.ndarray, np.ndarray | None]:
+        """Force coefficients ``(k, C)`` of the local coordinates' coefficients ``u`` ``(k, C)`` and
+        (``jacobian``) their Jacobian ``(k, C, k, C)``."""
+
+    def stuck_stiffness(self) -> np.ndarray:
+        """Stiffness ``(k,)`` of the element linearised at the static state (0: no force there)."""
+        return np.zeros(self.n_local)
+
+    def stick_limit(self, c: np.ndarray) -> float:
+        """Largest amplitude factor ``α`` up to which ``u(θ) = α Re(c e^{iθ})`` (``c`` ``(k,)``
+        complex) keeps the element on its linearisation (:meth:`stuck_stiffness`) at every instant;
+        0 when it is nonlinear at any amplitude, ``inf`` when never."""
+        return 0.0
+
+    def linear_limit(self, c: np.ndarray) -> float:
+        """Amplitude factor at which a discrete event (a stop closing, a slider slipping) first
+        happens along ``α Re(c e^{iθ})``; ``inf`` when the element has none."""
+        return self.stick_limit(c) if self.stick_limit(c) > 0 else np.inf
+
+    def stiffness_scale(self) -> float:
+        """A stiffness of the element [N/m] (the scale of the rigid-body hold test, 0 if none)."""
+        return float(np.max(self.stuck_stiffness(), initial=0.0))
+
+
+class _Memoryless(Element):
+    """An element whose force depends on the present local displacement only: AFT with
+    ``∂f_c/∂u_c' = F diag(∂f/∂u) E``."""
+
+    @abstractmethod
+    def force(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Force ``(k, Nt)`` at the samples ``u`` ``(k, Nt)`` and its derivative ``(k, k, Nt)``."""
+
+    def aft(self, fourier, u, jacobian):
+        f, df = self.force(fourier.synth(u))
+        lam = fourier.analyse(f)
+        if not jacobian:
+            return lam, None
+        return lam, np.einsum("ct,ijt,td->icjd", fourier.F, df, fourier.E)
+
+
+class CubicSpring(_Memoryless):
+    """``f = k3 u³`` [N] on one local coordinate (``k3`` in N/m³)."""
+
+    def __init__(self, w, k3: float):
+        super().__init__(w, k3=k3)
+        if self.n_local != 1:
+            raise ValueError(f"CubicSpring.w: expected one local coordinate, got {self.n_local}")
+
+    def force(self, u):
+        return self.k3 * u ** 3, (3.0 * self.k3 * u ** 2)[:, None]
+
+
+class UnilateralSpring(_Memoryless):
+    """``f = k max(u − gap, 0)`` [N] on one local coordinate: a stop of stiffness ``k`` (``stiffness``,
+    N/m) that closes when ``u`` reaches ``gap`` (≥ 0, m)."""
+
+    def __init__(self, w, stiffness: float, gap: float = 0.0):
+        super().__init__(w, stiffness=stiffness, gap=gap)
+        if self.n_local != 1:
+            raise ValueError(f"UnilateralSpring.w: expected one local coordinate, got {self.n_local}")
+
+    def force(self, u):
+        closed = u > self.gap
+        return self.stiffness * np.where(closed, u - self.gap, 0.0), (self.stiffness * closed)[:, None]
+
+    def stick_limit(self, c):
+        """The stop stays open while ``α |c| < gap`` (closed at any amplitude when ``gap = 0``)."""
+        size = float(np.abs(c[0]))
+        return self.gap / size if size > 0 else np.inf
+
+    def stiffness_scale(self) -> float:
+        return self.stiffness
+
+
+class Jenkins(Element):
+    """Elastic dry friction on one local coordinate: a spring ``kt`` [N/m] in series with a slider
+    that slips at the force ``slip_force`` [N]. The slider follows the play operator
+    ``s_k = clip(s_{k−1}, u_k − r, u_k + r)``, ``r = slip_force / kt``, from the static state
+    ``s = 0``; ``∂s_k/∂u`` is that of the sample the slider value comes from
+    (:func:`ringdamper.nonlinear.play.play_operator`)."""
+
+    def __init__(self, w, kt: float, slip_force: float):
+        super().__init__(w, kt=kt, slip_force=slip_force)
+        if self.n_local != 1:
+            raise ValueError(f"Jenkins.w: expected one local coordinate, got {self.n_local}")
+        if self.kt == 0:
+            raise ValueError("Jenkins.kt: expected a stiffness > 0, got 0")
+
+    def aft(self, fourier, u, jacobian):
+        E = fourier.E
+        x = fourier.synth(u)[0]
+        r = self.slip_force / self.kt
+        s, src = play_operator(x - r, x + r)
+        lam = fourier.analyse(self.kt * (x - s))[None]
+        if not jacobian:
+            return lam, None
+        sourced = src >= 0
+        ds = E[np.where(sourced, src % fourier.nt, 0)] * sourced[:, None]          # (Nt, C)
+        return lam, (fourier.F @ (self.kt * (E - ds)))[None, :, None, :]
+
+    def stuck_stiffness(self):
+        return np.array([self.kt])
+
+    def stick_limit(self, c):
+        """Sticks while ``kt α |c| ≤ slip_force``."""
+        size = float(np.abs(c[0]))
+        return self.slip_force / (self.kt * size) if size > 0 else np.inf
+
+
+class Elements:
+    """A set of elements of any kind on a structure with ``n_dofs`` DoFs, in the form the harmonic
+    balance takes (module docstring): ``elements.B`` is the ``B`` of the :class:`Structure`, and the
+    set is passed where the analyses take the contacts (``epmc(structure, elements, …)``)."""
+
+    def __init__(self, elements, n_dofs: int):
+        self.elements = list(elements)
+        if not self.elements:
+            raise ValueError("Elements: expected at least one element")
+        for i, e in enumerate(self.elements):
+            if not isinstance(e, Element):
+                raise ValueError(f"Elements[{i}]: expected an Element, got {type(e).__name__}")
+            if e.w.shape[0] != n_dofs:
+                raise ValueError(f"Elements[{i}] ({type(e).__name__}).w: expected {n_dofs} rows (the "
+                                 f"structure's DoFs), got {e.w.shape[0]}")
+        self.n_dofs = n_dofs
+
+    @property
+    def npairs(self) -> int:
+        """Number of elements (each owns three rows of ``B``, as a contact pair does)."""
+        return len(self.elements)
+
+    @property
+    def B(self) -> np.ndarray:
+        """``(3 · npairs, n_dofs)``: element ``e``'s local coordinates ``wᵀ`` in rows ``3e .. 3e + k − 1``."""
+        B = np.zeros((MAX_COORDINATES * self.npairs, self.n_dofs))
+        for i, e in enumerate(self.elements):
+            B[MAX_COORDINATES * i:MAX_COORDINATES * i + e.n_local] = e.w.T
+        return B
+
+    def for_pairs(self, npairs: int) -> "Elements":
+        if npairs != self.npairs:
+            raise ValueError(f"Elements: {self.npairs} elements, the structure's B has {npairs} blocks of 3 "
+                             "rows (build the structure with elements.B)")
+        return self
+
+    def aft(self, fourier: Fourier, d: np.ndarray, jacobian: bool | str = True, memory=None) -> ContactAFT:
+        """Forces ``lam`` ``(npairs, 3, C)`` of the local coordinates' coefficients ``d``
+        ``(npairs, 3, C)`` and (``jacobian``) their Jacobian ``(npairs, 3, C, 3, C)`` (``"dc"``:
+        its columns of the mean values only). ``memory`` is not used: every hysteretic element starts
+        from the static state."""
+        npairs, _, C = d.shape
+        lam = np.zeros((npairs, 3, C))
+        jac = np.zeros((npairs, 3, C, 3, C)) if jacobian else None
+        for i, e in enumerate(self.elements):
+            f, df = e.aft(fourier, d[i, :e.n_local], bool(jacobian))
+            lam[i, :e.n_local] = f
+            if jacobian:
+                jac[i, :e.n_local, :, :e.n_local] = df
+        if jacobian == "dc":
+            jac = jac[..., :1]
+        return ContactAFT(lam=lam, jac=jac, normal=None, tangential=None, memory=None)
+
+    def energy(self, d: np.ndarray, lam: np.ndarray) -> np.ndarray:
+        """Energy each element dissipates per cycle [J], ``∮ f · du`` of its local coordinates ``d`` and
+        forces ``lam`` ``(npairs, 3, C)`` (:func:`ringdamper.nonlinear.friction.dissipated_energy`;
+        zero for the conservative elements, up to the AFT's discretisation)."""
+        return dissipated_energy(d, lam)
+
+    def static_force(self) -> np.ndarray:
+        """No element exerts a force at the static state: zeros ``(npairs, 3)``."""
+        return np.zeros((self.npairs, 3))
+
+    def stuck_stiffness(self) -> np.ndarray:
+        out = np.zeros((self.npairs, 3))
+        for i, e in enumerate(self.elements):
+            out[i, :e.n_local] = e.stuck_stiffness()
+        return out
+
+    def stiffness_scale(self) -> float:
+        return max(e.stiffness_scale() for e in self.elements)
+
+    def stick_limit(self, c: np.ndarray) -> float:
+        """Smallest :meth:`Element.stick_limit` over the elements, ``c`` ``(npairs, 3)``."""
+        return min(e.stick_limit(c[i, :e.n_local]) for i, e in enumerate(self.elements))
+
+    def linear_limit(self, c: np.ndarray) -> float:
+        return min(e.linear_limit(c[i, :e.n_local]) for i, e in enumerate(self.elements))

@@ -38,20 +38,30 @@ MAX_COORDINATES = 3
 
 
 class Element(ABC):
-    """One nonlinear element acting through the local coordinates ``u = wᵀ q``."""
+    """One nonlinear element acting through the local coordinates ``u = wᵀ q``.
+
+    ``local_coordinates``: how many the element has (None: any up to :data:`MAX_COORDINATES`);
+    ``positive``: parameters that must be > 0 (every parameter must be a finite scalar ≥ 0)."""
+
+    local_coordinates: int | None = 1
+    positive: tuple = ()
 
     def __init__(self, w, **parameters):
+        name = type(self).__name__
         w = np.asarray(w, float)
         self.w = w[:, None] if w.ndim == 1 else w
         if self.w.ndim != 2 or not 1 <= self.w.shape[1] <= MAX_COORDINATES:
-            raise ValueError(f"{type(self).__name__}.w: expected shape (n,) or (n, k) with k <= "
-                             f"{MAX_COORDINATES}, got {np.shape(w)}")
-        for name, value in parameters.items():
+            raise ValueError(f"{name}.w: expected shape (n,) or (n, k) with k <= {MAX_COORDINATES}, "
+                             f"got {np.shape(w)}")
+        if self.local_coordinates is not None and self.n_local != self.local_coordinates:
+            raise ValueError(f"{name}.w: expected {self.local_coordinates} local coordinate(s), got {self.n_local}")
+        for key, value in parameters.items():
             if np.shape(value) != ():
-                raise ValueError(f"{type(self).__name__}.{name}: expected a scalar, got shape {np.shape(value)}")
-            if not np.isfinite(value) or value < 0:
-                raise ValueError(f"{type(self).__name__}.{name}: expected a finite value >= 0, got {value}")
-            setattr(self, name, float(value))
+                raise ValueError(f"{name}.{key}: expected a scalar, got shape {np.shape(value)}")
+            if not np.isfinite(value) or value < 0 or (key in self.positive and value == 0):
+                bound = "> 0" if key in self.positive else ">= 0"
+                raise ValueError(f"{name}.{key}: expected a finite value {bound}, got {value}")
+            setattr(self, key, float(value))
 
     @property
     def n_local(self) -> int:
@@ -116,8 +126,6 @@ class CubicSpring(_Memoryless):
 
     def __init__(self, w, k3: float):
         super().__init__(w, k3=k3)
-        if self.n_local != 1:
-            raise ValueError(f"CubicSpring.w: expected one local coordinate, got {self.n_local}")
 
     def force(self, u, v):
         return self.k3 * u ** 3, (3.0 * self.k3 * u ** 2)[:, None], None
@@ -129,8 +137,6 @@ class UnilateralSpring(_Memoryless):
 
     def __init__(self, w, stiffness: float, gap: float = 0.0):
         super().__init__(w, stiffness=stiffness, gap=gap)
-        if self.n_local != 1:
-            raise ValueError(f"UnilateralSpring.w: expected one local coordinate, got {self.n_local}")
 
     def force(self, u, v):
         closed = u > self.gap
@@ -152,12 +158,10 @@ class Jenkins(Element):
     ``s = 0``; ``∂s_k/∂u`` is that of the sample the slider value comes from
     (:func:`ringdamper.nonlinear.play.play_operator`)."""
 
+    positive = ("kt",)
+
     def __init__(self, w, kt: float, slip_force: float):
         super().__init__(w, kt=kt, slip_force=slip_force)
-        if self.n_local != 1:
-            raise ValueError(f"Jenkins.w: expected one local coordinate, got {self.n_local}")
-        if self.kt == 0:
-            raise ValueError("Jenkins.kt: expected a stiffness > 0, got 0")
 
     def aft(self, fourier, u, jacobian, omega=None):
         E = fourier.E
@@ -186,13 +190,10 @@ class TanhFriction(_Memoryless):
     ``slip_force/eps`` for ``|u̇| ≪ eps``, Coulomb's ``± slip_force`` for ``|u̇| ≫ eps``)."""
 
     velocity_dependent = True
+    positive = ("eps",)
 
     def __init__(self, w, slip_force: float, eps: float):
         super().__init__(w, slip_force=slip_force, eps=eps)
-        if self.n_local != 1:
-            raise ValueError(f"TanhFriction.w: expected one local coordinate, got {self.n_local}")
-        if self.eps == 0:
-            raise ValueError("TanhFriction.eps: expected a velocity > 0, got 0")
 
     def force(self, u, v):
         t = np.tanh(v / self.eps)

@@ -188,3 +188,10 @@ def test_element_inputs_are_named():
     st = Structure.real(np.eye(1), np.eye(1), np.zeros((6, 1)), np.ones(1), np.ones(1), H=1)
     with pytest.raises(ValueError, match="1 elements, the structure's B has 2 blocks"):
         epmc(st, elements, np.array([0.1]), H=1)
+
+
+def test_one_dimensional_elements_refuse_more_coordinates_and_zero_stiffness():
+    with pytest.raises(ValueError, match=r"Jenkins\.w: expected 1 local coordinate\(s\), got 2"):
+        Jenkins(np.ones((3, 2)), KT, FS)
+    with pytest.raises(ValueError, match=r"TanhFriction\.eps: expected a finite value > 0, got 0"):
+        TanhFriction([1.0], FS, eps=0.0)

@@ -96,6 +96,10 @@ class Element(ABC):
         """A stiffness of the element [N/m] (the scale of the rigid-body hold test, 0 if none)."""
         return float(np.max(self.stuck_stiffness(), initial=0.0))
 
+    def rest_damping(self) -> np.ndarray:
+        """Viscous damping ``(k,)`` [N s/m] of the element linearised at rest (0: none)."""
+        return np.zeros(self.n_local)
+
 
 class _Memoryless(Element):
     """An element whose force depends on the present local displacement and velocity only: AFT with
@@ -195,6 +199,10 @@ class TanhFriction(_Memoryless):
     def __init__(self, w, slip_force: float, eps: float):
         super().__init__(w, slip_force=slip_force, eps=eps)
 
+    def rest_damping(self):
+        """A damper ``slip_force / eps`` while ``|u̇| ≪ eps``."""
+        return np.array([self.slip_force / self.eps])
+
     def force(self, u, v):
         t = np.tanh(v / self.eps)
         return self.slip_force * t, np.zeros((1, 1, u.shape[-1])), (self.slip_force / self.eps * (1 - t * t))[:, None]
@@ -281,6 +289,13 @@ class Elements:
 
     def stiffness_scale(self) -> float:
         return max(e.stiffness_scale() for e in self.elements)
+
+    def rest_damping(self) -> np.ndarray:
+        """Damping ``(npairs, 3)`` of the elements linearised at rest."""
+        out = np.zeros((self.npairs, 3))
+        for i, e in enumerate(self.elements):
+            out[i, :e.n_local] = e.rest_damping()
+        return out
 
     def stick_limit(self, c: np.ndarray) -> float:
         """Smallest :meth:`Element.stick_limit` over the elements, ``c`` ``(npairs, 3)``."""

@@ -28,7 +28,9 @@ growing amplitude pushes exactly on its stick/slip kink at every accepted point;
 cycles between the two sides.)
 
 Jacobian: ``∂r/∂y = I + A_h K_c`` with ``A_h = [Ψ_C diag(1/z_C) Ψ_Cᴴ ; Ψ_Sᴴ]`` per harmonic and
-``K_c`` the AFT Jacobian (block-diagonal over pairs), plus the explicit-mode blocks. It is an
+``K_c`` the AFT Jacobian (block-diagonal over pairs), plus the explicit-mode blocks. The ω column is
+``∂z/∂ω`` through the receptances plus, for forces that depend on velocity (the AFT's
+``dlam_domega``, e.g. :class:`ringdamper.nonlinear.elements.TanhFriction`), ``A_h ∂Λ_h/∂ω``. It is an
 operator (:class:`CoreJacobian`): its product with a vector is the residual's linearisation,
 ``δr_{d,h} = δD_h + Ψ_C diag(1/z_C) Ψ_Cᴴ δΛ_h − Ψ_S δη_S``, ``δr_{η,h} = z_S δη_S + Ψ_Sᴴ δΛ_h``,
 ``δΛ = K_c δd`` (``O(p·m)`` per harmonic), and the matrix (``O(p²·m)``: the receptances ``G_h``) is
@@ -242,13 +244,15 @@ class CondensedHBM:
         H, C, p, npairs = self.H, self.C, self.p, self.npairs
         d = y[:self.n_d].reshape(C, p)
         aft = self.contacts.aft(self.fourier, d.reshape(C, npairs, 3).transpose(1, 2, 0),
-                                jacobian=True if jacobian else ("dc" if self.zero_modes.size else False))
+                                jacobian=True if jacobian else ("dc" if self.zero_modes.size else False),
+                                omega=omega)
         lam = aft.lam.transpose(2, 0, 1).reshape(C, p).copy()
         lam[0] -= self.static
         D, Lam = to_complex(d, H), to_complex(lam, H)
         r = np.empty(self.n_core)
         dr_dw = np.zeros(self.n_core) if jacobian else None
         dr_dx = np.zeros(self.n_core) if jacobian else None
+        dLam_dw = self._velocity_term(aft) if jacobian else None
         etas = []
         for h in range(H + 1):
             m, S, Cs = self.modal[h], self.S[h], self.Cset[h]
@@ -263,6 +267,11 @@ class CondensedHBM:
             if jacobian:                           # ω and ξ derivatives: only z depends on them
                 for vec, dz in ((dr_dw, dz_dw), (dr_dx, dz_dx)):
                     self._put(vec, h, self.PsiC[h] @ ((eta[Cs] / z[Cs]) * dz[Cs]), dz[S] * eta_S)
+                if dLam_dw is not None:            # forces that depend on velocity: Λ depends on ω
+                    extra = np.zeros(self.n_core)
+                    self._put(extra, h, self.PsiC[h] @ ((self.PsiCH[h] @ dLam_dw[h]) / z[Cs]),
+                              self.PsiSH[h] @ dLam_dw[h])
+                    dr_dw += extra
         J = trivial = None
         if jacobian:
             active = np.any(aft.jac.reshape(npairs, -1) != 0, axis=1)
@@ -300,7 +309,16 @@ class CondensedHBM:
         a2 = np.abs(etaC) ** 2
         d_w = -2.0 * np.sum(a2 * np.real(dz_dw[Cs] / z[Cs]))
         d_x = -2.0 * np.sum(a2 * np.real(dz_dx[Cs] / z[Cs]))
+        dLam_dw = self._velocity_term(ev.aft)
+        if dLam_dw is not None:                    # η_C = (f − Ψ_Cᴴ Λ)/z, Λ depending on ω
+            d_w += 2.0 * np.sum(np.real(np.conj(etaC) * (-(self.PsiCH[h] @ dLam_dw[h]) / z[Cs])))
         return float(np.sum(np.abs(eta) ** 2)), grad, d_w, d_x
+
+    def _velocity_term(self, aft) -> np.ndarray | None:
+        """``∂Λ_h/∂ω`` per harmonic (complex, contact layout) of forces that depend on velocity, or None."""
+        if aft.dlam_domega is None:
+            return None
+        return to_complex(aft.dlam_domega.transpose(2, 0, 1).reshape(self.C, self.p), self.H)
 
     def _modal_impedance(self, h, omega, xi):
         m = self.modal[h]

@@ -11,7 +11,11 @@ an element must exert no force there.
 * :class:`CubicSpring` ``f = k3 u³`` (Duffing);
 * :class:`UnilateralSpring` ``f = k max(u − gap, 0)``, ``gap ≥ 0`` (a stop closing at ``u = gap``);
 * :class:`Jenkins` ``f = kt (u − s)``, slider ``s`` held while ``|f| < F_s`` (elastic dry friction, one
-  direction; the memory before the period is the static state ``s = 0``, as for the 3-D contact).
+  direction; the memory before the period is the static state ``s = 0``, as for the 3-D contact);
+* :class:`TanhFriction` ``f = F_s tanh(u̇/ε)`` (dry friction regularised in velocity). Its force depends
+  on the velocity ``u̇ = ω ∂u/∂τ``, hence on ω: the AFT also returns ``∂f_c/∂ω``, which the harmonic
+  balance adds to its ω column. Hill's stability of such a solution is not available (it would need
+  the velocity Jacobian apart): ``forced_response(stability=True)`` raises.
 
 :class:`Elements` gathers any number of them, of any kind, into the set the harmonic balance takes in
 place of the 3-D contact pairs (:class:`ringdamper.nonlinear.friction.FrictionContacts`): its ``B``
@@ -34,30 +38,44 @@ MAX_COORDINATES = 3
 
 
 class Element(ABC):
-    """One nonlinear element acting through the local coordinates ``u = wᵀ q``."""
+    """One nonlinear element acting through the local coordinates ``u = wᵀ q``.
+
+    ``local_coordinates``: how many the element has (None: any up to :data:`MAX_COORDINATES`);
+    ``positive``: parameters that must be > 0 (every parameter must be a finite scalar ≥ 0)."""
+
+    local_coordinates: int | None = 1
+    positive: tuple = ()
 
     def __init__(self, w, **parameters):
+        name = type(self).__name__
         w = np.asarray(w, float)
         self.w = w[:, None] if w.ndim == 1 else w
         if self.w.ndim != 2 or not 1 <= self.w.shape[1] <= MAX_COORDINATES:
-            raise ValueError(f"{type(self).__name__}.w: expected shape (n,) or (n, k) with k <= "
-                             f"{MAX_COORDINATES}, got {np.shape(w)}")
-        for name, value in parameters.items():
+            raise ValueError(f"{name}.w: expected shape (n,) or (n, k) with k <= {MAX_COORDINATES}, "
+                             f"got {np.shape(w)}")
+        if self.local_coordinates is not None and self.n_local != self.local_coordinates:
+            raise ValueError(f"{name}.w: expected {self.local_coordinates} local coordinate(s), got {self.n_local}")
+        for key, value in parameters.items():
             if np.shape(value) != ():
-                raise ValueError(f"{type(self).__name__}.{name}: expected a scalar, got shape {np.shape(value)}")
-            if not np.isfinite(value) or value < 0:
-                raise ValueError(f"{type(self).__name__}.{name}: expected a finite value >= 0, got {value}")
-            setattr(self, name, float(value))
+                raise ValueError(f"{name}.{key}: expected a scalar, got shape {np.shape(value)}")
+            if not np.isfinite(value) or value < 0 or (key in self.positive and value == 0):
+                bound = "> 0" if key in self.positive else ">= 0"
+                raise ValueError(f"{name}.{key}: expected a finite value {bound}, got {value}")
+            setattr(self, key, float(value))
 
     @property
     def n_local(self) -> int:
         """Number of local coordinates."""
         return self.w.shape[1]
 
+    #: the force depends on the velocity
+    velocity_dependent = False
+
     @abstractmethod
-    def aft(self, fourier: Fourier, u: np.ndarray, jacobian: bool) -> tuple[np.ndarray, np.ndarray | None]:
-        """Force coefficients ``(k, C)`` of the local coordinates' coefficients ``u`` ``(k, C)`` and
-        (``jacobian``) their Jacobian ``(k, C, k, C)``."""
+    def aft(self, fourier: Fourier, u: np.ndarray, jacobian: bool, omega: float | None = None):
+        """Force coefficients ``(k, C)`` of the local coordinates' coefficients ``u`` ``(k, C)`` at the
+        frequency ``omega``, (``jacobian``) their Jacobian ``(k, C, k, C)`` and ``∂f/∂ω`` ``(k, C)``
+        (None for forces that do not depend on velocity)."""
 
     def stuck_stiffness(self) -> np.ndarray:
         """Stiffness ``(k,)`` of the element linearised at the static state (0: no force there)."""
@@ -78,21 +96,33 @@ class Element(ABC):
         """A stiffness of the element [N/m] (the scale of the rigid-body hold test, 0 if none)."""
         return float(np.max(self.stuck_stiffness(), initial=0.0))
 
+    def rest_damping(self) -> np.ndarray:
+        """Viscous damping ``(k,)`` [N s/m] of the element linearised at rest (0: none)."""
+        return np.zeros(self.n_local)
+
 
 class _Memoryless(Element):
-    """An element whose force depends on the present local displacement only: AFT with
-    ``∂f_c/∂u_c' = F diag(∂f/∂u) E``."""
+    """An element whose force depends on the present local displacement and velocity only: AFT with
+    ``∂f_c/∂u_c' = F diag(∂f/∂u) E + ω F diag(∂f/∂u̇) dE`` and ``∂f_c/∂ω = F (∂f/∂u̇ · dE u)``."""
 
     @abstractmethod
-    def force(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Force ``(k, Nt)`` at the samples ``u`` ``(k, Nt)`` and its derivative ``(k, k, Nt)``."""
+    def force(self, u: np.ndarray, v: np.ndarray):
+        """Force ``(k, Nt)`` at the displacement and velocity samples ``u``, ``v`` ``(k, Nt)``, and its
+        derivatives ``(k, k, Nt)`` with respect to ``u`` and to ``v`` (None: no velocity dependence)."""
 
-    def aft(self, fourier, u, jacobian):
-        f, df = self.force(fourier.synth(u))
+    def aft(self, fourier, u, jacobian, omega=None):
+        if self.velocity_dependent and omega is None:
+            raise ValueError(f"{type(self).__name__}: the force depends on velocity, the AFT needs omega")
+        rate = u @ fourier.dE.T                                        # ∂u/∂τ at the samples
+        f, df_du, df_dv = self.force(fourier.synth(u), rate * (omega if self.velocity_dependent else 0.0))
         lam = fourier.analyse(f)
         if not jacobian:
-            return lam, None
-        return lam, np.einsum("ct,ijt,td->icjd", fourier.F, df, fourier.E)
+            return lam, None, None
+        jac = np.einsum("ct,ijt,td->icjd", fourier.F, df_du, fourier.E)
+        if df_dv is None:
+            return lam, jac, None
+        jac += omega * np.einsum("ct,ijt,td->icjd", fourier.F, df_dv, fourier.dE)
+        return lam, jac, fourier.analyse(np.einsum("ijt,jt->it", df_dv, rate))
 
 
 class CubicSpring(_Memoryless):
@@ -100,11 +130,9 @@ class CubicSpring(_Memoryless):
 
     def __init__(self, w, k3: float):
         super().__init__(w, k3=k3)
-        if self.n_local != 1:
-            raise ValueError(f"CubicSpring.w: expected one local coordinate, got {self.n_local}")
 
-    def force(self, u):
-        return self.k3 * u ** 3, (3.0 * self.k3 * u ** 2)[:, None]
+    def force(self, u, v):
+        return self.k3 * u ** 3, (3.0 * self.k3 * u ** 2)[:, None], None
 
 
 class UnilateralSpring(_Memoryless):
@@ -113,12 +141,10 @@ class UnilateralSpring(_Memoryless):
 
     def __init__(self, w, stiffness: float, gap: float = 0.0):
         super().__init__(w, stiffness=stiffness, gap=gap)
-        if self.n_local != 1:
-            raise ValueError(f"UnilateralSpring.w: expected one local coordinate, got {self.n_local}")
 
-    def force(self, u):
+    def force(self, u, v):
         closed = u > self.gap
-        return self.stiffness * np.where(closed, u - self.gap, 0.0), (self.stiffness * closed)[:, None]
+        return self.stiffness * np.where(closed, u - self.gap, 0.0), (self.stiffness * closed)[:, None], None
 
     def stick_limit(self, c):
         """The stop stays open while ``α |c| < gap`` (closed at any amplitude when ``gap = 0``)."""
@@ -136,24 +162,22 @@ class Jenkins(Element):
     ``s = 0``; ``∂s_k/∂u`` is that of the sample the slider value comes from
     (:func:`ringdamper.nonlinear.play.play_operator`)."""
 
+    positive = ("kt",)
+
     def __init__(self, w, kt: float, slip_force: float):
         super().__init__(w, kt=kt, slip_force=slip_force)
-        if self.n_local != 1:
-            raise ValueError(f"Jenkins.w: expected one local coordinate, got {self.n_local}")
-        if self.kt == 0:
-            raise ValueError("Jenkins.kt: expected a stiffness > 0, got 0")
 
-    def aft(self, fourier, u, jacobian):
+    def aft(self, fourier, u, jacobian, omega=None):
         E = fourier.E
         x = fourier.synth(u)[0]
         r = self.slip_force / self.kt
         s, src = play_operator(x - r, x + r)
         lam = fourier.analyse(self.kt * (x - s))[None]
         if not jacobian:
-            return lam, None
+            return lam, None, None
         sourced = src >= 0
         ds = E[np.where(sourced, src % fourier.nt, 0)] * sourced[:, None]          # (Nt, C)
-        return lam, (fourier.F @ (self.kt * (E - ds)))[None, :, None, :]
+        return lam, (fourier.F @ (self.kt * (E - ds)))[None, :, None, :], None
 
     def stuck_stiffness(self):
         return np.array([self.kt])
@@ -162,6 +186,26 @@ class Jenkins(Element):
         """Sticks while ``kt α |c| ≤ slip_force``."""
         size = float(np.abs(c[0]))
         return self.slip_force / (self.kt * size) if size > 0 else np.inf
+
+
+class TanhFriction(_Memoryless):
+    """Dry friction regularised in velocity on one local coordinate: ``f = slip_force · tanh(u̇/eps)``
+    [N] (``eps`` [m/s]: the velocity over which the force builds up; a viscous damper
+    ``slip_force/eps`` for ``|u̇| ≪ eps``, Coulomb's ``± slip_force`` for ``|u̇| ≫ eps``)."""
+
+    velocity_dependent = True
+    positive = ("eps",)
+
+    def __init__(self, w, slip_force: float, eps: float):
+        super().__init__(w, slip_force=slip_force, eps=eps)
+
+    def rest_damping(self):
+        """A damper ``slip_force / eps`` while ``|u̇| ≪ eps``."""
+        return np.array([self.slip_force / self.eps])
+
+    def force(self, u, v):
+        t = np.tanh(v / self.eps)
+        return self.slip_force * t, np.zeros((1, 1, u.shape[-1])), (self.slip_force / self.eps * (1 - t * t))[:, None]
 
 
 class Elements:
@@ -200,22 +244,32 @@ class Elements:
                              "rows (build the structure with elements.B)")
         return self
 
-    def aft(self, fourier: Fourier, d: np.ndarray, jacobian: bool | str = True, memory=None) -> ContactAFT:
+    @property
+    def velocity_dependent(self) -> bool:
+        """Some element's force depends on velocity (hence on ω)."""
+        return any(e.velocity_dependent for e in self.elements)
+
+    def aft(self, fourier: Fourier, d: np.ndarray, jacobian: bool | str = True, memory=None,
+            omega: float | None = None) -> ContactAFT:
         """Forces ``lam`` ``(npairs, 3, C)`` of the local coordinates' coefficients ``d``
-        ``(npairs, 3, C)`` and (``jacobian``) their Jacobian ``(npairs, 3, C, 3, C)`` (``"dc"``:
-        its columns of the mean values only). ``memory`` is not used: every hysteretic element starts
+        ``(npairs, 3, C)`` at the frequency ``omega``, (``jacobian``) their Jacobian
+        ``(npairs, 3, C, 3, C)`` (``"dc"``: its columns of the mean values only) and, if some element
+        depends on velocity, ``dlam_domega``. ``memory`` is not used: every hysteretic element starts
         from the static state."""
         npairs, _, C = d.shape
         lam = np.zeros((npairs, 3, C))
         jac = np.zeros((npairs, 3, C, 3, C)) if jacobian else None
+        dlam_domega = np.zeros((npairs, 3, C)) if jacobian and self.velocity_dependent else None
         for i, e in enumerate(self.elements):
-            f, df = e.aft(fourier, d[i, :e.n_local], bool(jacobian))
+            f, df, df_dw = e.aft(fourier, d[i, :e.n_local], bool(jacobian), omega)
             lam[i, :e.n_local] = f
             if jacobian:
                 jac[i, :e.n_local, :, :e.n_local] = df
+            if df_dw is not None:
+                dlam_domega[i, :e.n_local] = df_dw
         if jacobian == "dc":
             jac = jac[..., :1]
-        return ContactAFT(lam=lam, jac=jac, normal=None, tangential=None, memory=None)
+        return ContactAFT(lam=lam, jac=jac, normal=None, tangential=None, memory=None, dlam_domega=dlam_domega)
 
     def energy(self, d: np.ndarray, lam: np.ndarray) -> np.ndarray:
         """Energy each element dissipates per cycle [J], ``∮ f · du`` of its local coordinates ``d`` and
@@ -235,6 +289,13 @@ class Elements:
 
     def stiffness_scale(self) -> float:
         return max(e.stiffness_scale() for e in self.elements)
+
+    def rest_damping(self) -> np.ndarray:
+        """Damping ``(npairs, 3)`` of the elements linearised at rest."""
+        out = np.zeros((self.npairs, 3))
+        for i, e in enumerate(self.elements):
+            out[i, :e.n_local] = e.rest_damping()
+        return out
 
     def stick_limit(self, c: np.ndarray) -> float:
         """Smallest :meth:`Element.stick_limit` over the elements, ``c`` ``(npairs, 3)``."""

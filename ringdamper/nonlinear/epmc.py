@@ -193,7 +193,7 @@ def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, 
     nt = default_nt(H) if nt is None else nt
     steps = steps or default_steps()
     contacts = contacts.for_pairs(structure.npairs)
-    omega0, phi = _stuck_mode(structure, contacts, mode, omega_target)
+    omega0, xi0, phi = _stuck_mode(structure, contacts, mode, omega_target)
     window = (omega0 * (1 - 2 * pole_band), omega0 * (1 + pole_band))
     model = CondensedHBM(structure, contacts, H, nt, explicit=pole_modes(structure, H, *window),
                          damping=structural_damping(structure, H))
@@ -208,7 +208,7 @@ def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, 
     if rest.size:
         if alpha_start is None:
             alpha_start = min(rest[0], 0.5 * (onset if onset > 0 else linear_limit(structure, contacts, phi)))
-        z0, _ = _initial_guess(model, phi, omega0, alpha_start)
+        z0, _ = _initial_guess(model, phi, omega0, alpha_start, xi0)
         run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log(rest), problem.scale,
                                      steps, tol, max_iter, accept=problem.accept,
                                      s_start=np.log(alpha_start), on_failure=problem.on_failure,
@@ -218,9 +218,34 @@ def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, 
 
 
 def _stuck_mode(structure, contacts, mode, omega_target):
-    omegas, Phi = structure.stuck_modes(contacts.stuck_stiffness().ravel(), h=1)
+    """The mode the continuation starts from, ``(ω₀, ξ₀, φ)``: the linearised stuck mode (ξ₀ = 0), or,
+    for forces that depend on velocity (a damper at rest, e.g. tanh friction holding a light DoF), the
+    complex mode of the system linearised at rest with that damping and the structure's,
+    ``λ² M φ + λ C φ + K φ = 0``: ``ω₀ = |λ|``, ``ξ₀ = −2 Re λ``, ``φᴴ M φ = 1`` (``mode``: the index in
+    ascending ``|λ|`` of the oscillating modes, or the one nearest ``omega_target``; the stuck mode when
+    that damping leaves no such mode oscillating)."""
+    stiffness = contacts.stuck_stiffness().ravel()
+    omegas, Phi = structure.stuck_modes(stiffness, h=1)
     k = mode if omega_target is None else int(np.argmin(np.abs(omegas - omega_target)))
-    return omegas[k], Phi[:, k]
+    if not contacts.velocity_dependent:
+        return omegas[k], 0.0, Phi[:, k]
+    hd = structure.harmonics[1]
+    n = hd.M.shape[0]
+    K = hd.K + hd.B.conj().T @ (stiffness[:, None] * hd.B)
+    C = hd.B.conj().T @ (contacts.rest_damping().ravel()[:, None] * hd.B)
+    if structure.damped:
+        C = C + structure.damping_matrix(1)
+    state = np.block([[np.zeros((n, n)), np.eye(n)], [-np.linalg.solve(hd.M, K), -np.linalg.solve(hd.M, C)]])
+    lam, vectors = np.linalg.eig(state)
+    oscillating = np.flatnonzero(lam.imag > 0)
+    if oscillating.size <= (mode if omega_target is None else 0):     # overdamped at rest: the stuck mode
+        return omegas[k], 0.0, Phi[:, k]
+    oscillating = oscillating[np.argsort(np.abs(lam[oscillating]))]
+    nearest = mode if omega_target is None else int(np.argmin(np.abs(np.abs(lam[oscillating]) - omega_target)))
+    k = oscillating[nearest]
+    phi = vectors[:n, k]
+    phi = phi / np.sqrt(np.real(np.vdot(phi, hd.M @ phi)))
+    return abs(lam[k]), -2.0 * lam[k].real, phi
 
 
 def linear_limit(structure, contacts, phi):
@@ -366,8 +391,9 @@ def _same_unknown(base: CondensedHBM, model: CondensedHBM, k: int) -> int:
     return model.eta_slices[h].start + k - base.eta_slices[h].start
 
 
-def _initial_guess(model: CondensedHBM, phi: np.ndarray, omega0: float, alpha0: float):
-    """Linear stuck mode at amplitude ``α₀``, phase rotated so the phase unknown is real."""
+def _initial_guess(model: CondensedHBM, phi: np.ndarray, omega0: float, alpha0: float, xi0: float = 0.0):
+    """Linear mode ``φ`` (real, or complex with ``ξ₀``: :func:`_stuck_mode`) at amplitude ``α₀``, phase
+    rotated so the phase unknown is real."""
     m1 = model.modal[1]
     hd = model.structure.harmonics[1]
     d1 = hd.B @ phi
@@ -385,7 +411,7 @@ def _initial_guess(model: CondensedHBM, phi: np.ndarray, omega0: float, alpha0: 
         y[model.eta_slices[0].start + model.zero_modes] = model.eta_ref
     phase = (model.slot_index(1, True, k) if k < model.p
              else model.eta_index(1, k - model.p, True))
-    return np.r_[y, omega0, 0.0], phase
+    return np.r_[y, omega0, xi0], phase
 
 
 def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall, window) -> Backbone:

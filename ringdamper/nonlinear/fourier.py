@@ -21,7 +21,8 @@ class Fourier:
     """Synthesis/analysis matrices for H harmonics sampled at Nt points per period.
 
     ``E`` (Nt × C) maps coefficients to samples, ``F`` (C × Nt) samples to coefficients (its
-    left inverse, ``F @ E = I``).
+    left inverse, ``F @ E = I``), ``dE`` (Nt × C) coefficients to the samples of the derivative in τ
+    (velocities are ``ω · dE c``).
     """
 
     def __init__(self, H: int, nt: int):
@@ -34,6 +35,10 @@ class Fourier:
         E[:, 1::2] = np.cos(np.outer(self.tau, h))
         E[:, 2::2] = np.sin(np.outer(self.tau, h))
         self.E = E
+        dE = np.zeros((nt, self.C))
+        dE[:, 1::2] = -h * np.sin(np.outer(self.tau, h))
+        dE[:, 2::2] = h * np.cos(np.outer(self.tau, h))
+        self.dE = dE
         self.F = E.T * (2.0 / nt)
         self.F[0] /= 2.0
 

@@ -62,6 +62,9 @@ class FrictionContacts:
     gap: np.ndarray
     law: str = "jenkins"
 
+    #: the contact forces do not depend on velocity (the interface of a nonlinearity, see :meth:`aft`)
+    velocity_dependent = False
+
     def __post_init__(self):
         values = {k: np.atleast_1d(np.asarray(getattr(self, k), float)) for k in PARAMETERS}
         for k, a in values.items():
@@ -99,9 +102,10 @@ class FrictionContacts:
         return dataclasses.replace(self, **{k: np.repeat(getattr(self, k), npairs) for k in PARAMETERS})
 
     def aft(self, fourier: Fourier, d: np.ndarray, jacobian: bool | str = True,
-            memory: np.ndarray | None = None) -> "ContactAFT":
+            memory: np.ndarray | None = None, omega: float | None = None) -> "ContactAFT":
         """:func:`contact_aft` of these contacts (the interface the harmonic balance asks of a
-        nonlinearity, shared with :class:`ringdamper.nonlinear.elements.Elements`)."""
+        nonlinearity, shared with :class:`ringdamper.nonlinear.elements.Elements`); the contact forces
+        do not depend on velocity, so ``omega`` is not used."""
         return contact_aft(self, fourier, d, jacobian, memory)
 
     def stiffness_scale(self) -> float:
@@ -151,14 +155,16 @@ class FrictionContacts:
 @dataclass
 class ContactAFT:
     """AFT result for all pairs: force coefficients ``lam`` ``(npairs, 3, C)``, their Jacobian
-    ``jac[q, i, c, j, c'] = ∂lam[q, i, c] / ∂d[q, j, c']`` (or None), the time signals, and the
-    periodic slider state at the period start ``memory`` ``(npairs, 2)``."""
+    ``jac[q, i, c, j, c'] = ∂lam[q, i, c] / ∂d[q, j, c']`` (or None), the time signals, the
+    periodic slider state at the period start ``memory`` ``(npairs, 2)`` and, for forces that depend
+    on velocity, ``dlam_domega`` ``∂lam/∂ω`` (None: they do not)."""
 
     lam: np.ndarray
     jac: np.ndarray | None
     normal: np.ndarray
     tangential: np.ndarray
     memory: np.ndarray
+    dlam_domega: np.ndarray | None = None
 
 
 def contact_aft(contacts: FrictionContacts, fourier: Fourier, d: np.ndarray,

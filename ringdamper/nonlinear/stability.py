@@ -72,6 +72,9 @@ def modal_hill_matrices(model, ev, omega: float, band: float = BAND):
     the gauge holds (module docstring)."""
     if ev.aft.jac is None or ev.aft.jac.shape[-1] != model.C:
         raise ValueError("the evaluation must carry the full contact Jacobian (jacobian=True)")
+    if ev.aft.dlam_domega is not None:
+        raise ValueError("Hill's stability is not available for forces that depend on velocity "
+                         "(TanhFriction): compute the forced response with stability=False")
     Z, D1, P = [], [], []
     G = np.zeros((model.n_d, model.n_d))
     for h, m in enumerate(model.modal):

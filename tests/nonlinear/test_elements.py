@@ -9,19 +9,25 @@ Per element, through the AFT on ``u = a cos τ`` (H = 1):
 * 1-D Jenkins: in-phase stiffness ``kt/π (β − ½ sin 2β)`` and dissipation ``4 F_s (a − a_s)`` (the
   describing function, as for the 3-D contact), 1e-6 at Nt = 16384; and equal to the 3-D contact's
   tangential direction (kn large, no normal motion) to 1e-13 at any state;
-* the analytic Jacobian against central differences (1e-6 of its largest entry) at H = 3.
+* tanh friction with ``ε ≪ a ω``: Coulomb's describing function, first sine coefficient ``−4F/π`` and
+  dissipation ``4 F a`` (1e-3, the regularisation's share ~ε/(aω));
+* the analytic Jacobian, and ``∂f/∂ω`` of tanh friction, against central differences (1e-6 of the
+  largest entry) at H = 3.
 
 Systems: the Duffing oscillator's H = 1 backbone ``ω² = (k + ¾ k3 a²)/m`` (Newton tolerance: 1e-7);
 the one-DoF Jenkins oscillator with the 1-D element and with the 3-D contact, the same backbone
-(ω 1e-12, ζ 1e-14); two cubic springs on one coordinate equal to one with the summed k3 (1e-10 at
+(ω 1e-12, ζ 1e-14); a mass on a spring with tanh friction at H = 1 and ε ≪ aω: the frequency stays
+``√(k/m)`` (1e-12) and ζ is Coulomb's describing function ``2F/(π m a ω²)`` (1e-4, measured 3e-6);
+two cubic springs on one coordinate equal to one with the summed k3 (1e-10 at
 Newton tolerance 1e-12: the two problems have different unknowns, so Newton stops at other iterates).
 """
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.elements import CubicSpring, Elements, Jenkins, UnilateralSpring
+from ringdamper.nonlinear.elements import CubicSpring, Elements, Jenkins, TanhFriction, UnilateralSpring
 from ringdamper.nonlinear.epmc import epmc
 from ringdamper.nonlinear.fourier import Fourier
+from ringdamper.nonlinear.frf import forced_response
 from ringdamper.nonlinear.friction import FrictionContacts, contact_aft, dissipated_energy
 from ringdamper.nonlinear.structure import Structure
 from ringdamper.status import Status
@@ -36,7 +42,7 @@ def _harmonic_one(element, a, nt):
     fourier = Fourier(1, nt)
     u = np.zeros((1, fourier.C))
     u[0, 1] = a
-    lam, _ = element.aft(fourier, u, False)
+    lam = element.aft(fourier, u, False)[0]
     return lam[0], dissipated_energy(u[None], lam[None])[0]
 
 
@@ -78,24 +84,44 @@ def test_jenkins_element_is_the_tangential_direction_of_the_contact():
         d = np.zeros((1, 3, fourier.C))
         d[0, 1] = u[0]
         reference = contact_aft(contact, fourier, d)
-        lam, jac = Jenkins([1.0], KT, FS).aft(fourier, u, True)
+        lam, jac, _ = Jenkins([1.0], KT, FS).aft(fourier, u, True)
         np.testing.assert_allclose(lam[0], reference.lam[0, 1], rtol=0, atol=1e-13 * FS)
         np.testing.assert_allclose(jac[0, :, 0], reference.jac[0, 1, :, 1], rtol=0, atol=1e-13 * KT)
 
 
+def test_tanh_friction_is_coulomb_for_a_small_regularisation():
+    a, omega = 1.0, 2.0
+    fourier = Fourier(1, 16384)
+    u = np.zeros((1, fourier.C))
+    u[0, 1] = a
+    lam = TanhFriction([1.0], FS, eps=1e-4 * a * omega).aft(fourier, u, False, omega)[0]
+    assert lam[0, 2] == pytest.approx(-4 * FS / np.pi, rel=1e-3)
+    assert dissipated_energy(u[None], lam[None])[0] == pytest.approx(4 * FS * a, rel=1e-3)
+
+
 @pytest.mark.parametrize("element", [CubicSpring([1.0], K3), UnilateralSpring([1.0], KU, GAP),
-                                     Jenkins([1.0], KT, FS)], ids=["cubic", "unilateral", "jenkins"])
+                                     Jenkins([1.0], KT, FS), TanhFriction([1.0], FS, eps=0.3)],
+                         ids=["cubic", "unilateral", "jenkins", "tanh"])
 def test_element_jacobian_matches_finite_differences(element):
     rng = np.random.default_rng(1)
     fourier = Fourier(3, 64)
     u = rng.standard_normal((1, fourier.C)) * 0.3
     u[0, 1] = 1.0
-    _, jac = element.aft(fourier, u, True)
+    omega = 1.3
+    _, jac, dw = element.aft(fourier, u, True, omega)
     J = jac.reshape(fourier.C, fourier.C)
     h = 1e-7
-    fd = np.array([(element.aft(fourier, u + h * e, False)[0] - element.aft(fourier, u - h * e, False)[0]).ravel()
-                   / (2 * h) for e in np.eye(fourier.C)[:, None, :]]).T
+
+    def force(x, w=omega):
+        return element.aft(fourier, x, False, w)[0].ravel()
+
+    fd = np.array([(force(u + h * e) - force(u - h * e)) / (2 * h) for e in np.eye(fourier.C)[:, None, :]]).T
     assert np.max(np.abs(J - fd)) <= 1e-6 * np.max(np.abs(fd))
+    if element.velocity_dependent:
+        fd_w = (force(u, omega + h) - force(u, omega - h)) / (2 * h)
+        assert np.max(np.abs(dw.ravel() - fd_w)) <= 1e-6 * np.max(np.abs(fd_w))
+    else:
+        assert dw is None
 
 
 def _one_dof(elements, H, m=2.0, k=100.0):
@@ -111,6 +137,20 @@ def test_duffing_backbone_at_h1_is_the_analytic_one():
     a = alpha / np.sqrt(m)                                  # mass-normalised modal amplitude
     np.testing.assert_allclose(bb.omega, np.sqrt((k + 0.75 * K3 * a ** 2) / m), rtol=1e-7)
     np.testing.assert_allclose(bb.zeta, 0.0, atol=1e-14)
+
+
+def test_tanh_friction_backbone_at_h1_is_coulombs_describing_function():
+    m, k = 2.0, 100.0
+    elements = Elements([TanhFriction([1.0], FS, eps=1e-4)], 1)
+    alpha = np.geomspace(0.05, 2.0, 6)
+    bb = epmc(_one_dof(elements, 1, m, k), elements, alpha, H=1, nt=1024)
+    assert np.all(bb.status == Status.CONVERGED)
+    w0 = np.sqrt(k / m)
+    a = alpha / np.sqrt(m)
+    np.testing.assert_allclose(bb.omega, w0, rtol=1e-12)
+    np.testing.assert_allclose(bb.zeta, 2 * FS / (np.pi * m * a * w0 ** 2), rtol=1e-4)
+    with pytest.raises(ValueError, match="Hill's stability is not available for forces that depend on velocity"):
+        forced_response(_one_dof(elements, 1, m, k), elements, 1.0, 0.9 * w0, 1.1 * w0, H=1, nt=64)
 
 
 def test_jenkins_element_and_contact_give_the_same_backbone():
@@ -148,3 +188,10 @@ def test_element_inputs_are_named():
     st = Structure.real(np.eye(1), np.eye(1), np.zeros((6, 1)), np.ones(1), np.ones(1), H=1)
     with pytest.raises(ValueError, match="1 elements, the structure's B has 2 blocks"):
         epmc(st, elements, np.array([0.1]), H=1)
+
+
+def test_one_dimensional_elements_refuse_more_coordinates_and_zero_stiffness():
+    with pytest.raises(ValueError, match=r"Jenkins\.w: expected 1 local coordinate\(s\), got 2"):
+        Jenkins(np.ones((3, 2)), KT, FS)
+    with pytest.raises(ValueError, match=r"TanhFriction\.eps: expected a finite value > 0, got 0"):
+        TanhFriction([1.0], FS, eps=0.0)

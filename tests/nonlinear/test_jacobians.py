@@ -169,3 +169,37 @@ def test_contact_jacobian_restarted_from_own_periodic_state(state):
 
     Jfd = fd_jacobian(lam, d.ravel(), np.full(d.size, 1e-6 * np.max(np.abs(d))))
     assert np.max(np.abs(J - Jfd)) <= 1e-6 * np.max(np.abs(Jfd))
+
+
+def _chain_with_every_element(H):
+    """3-DoF chain with a cubic spring, a stop, a Jenkins element and tanh friction (``Elements``)."""
+    from ringdamper.nonlinear.elements import CubicSpring, Elements, Jenkins, TanhFriction, UnilateralSpring
+    from ringdamper.nonlinear.structure import Structure
+
+    elements = Elements([CubicSpring([1, 0, 0], 2e3), UnilateralSpring([0, 0, 1], 50.0, 0.01),
+                         Jenkins([0, 1, -1], 30.0, 0.5), TanhFriction([1, -1, 0], 0.4, 0.05)], 3)
+    K = np.array([[2.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 2.0]]) * 100.0
+    e = np.eye(3)[1]
+    return Structure.real(np.eye(3), K, elements.B, e, e, H=H, C=0.01 * K), elements
+
+
+@pytest.mark.parametrize("amp", [5e-3, 5e-2])
+def test_epmc_residual_jacobian_with_every_element_kind(amp):
+    """Including the velocity-dependent tanh friction: its ∂Λ/∂ω in the ω column and in the
+    amplitude condition's ω derivative."""
+    st, elements = _chain_with_every_element(3)
+    model = CondensedHBM(st, elements, 3, 64, damping=[st.modal(h).damping() for h in range(4)])
+    rng = np.random.default_rng(13)
+    z = np.r_[_state(model, amp, rng), 12.0, 0.5]
+    prob = EPMCProblem(model, phase_index=model.slot_index(1, True, 0))
+    _check_problem(lambda x: prob.fun(x, np.log(1e-2))[:2], z, prob.scale(z))
+
+
+def test_forced_residual_jacobian_with_every_element_kind():
+    st, elements = _chain_with_every_element(3)
+    model = CondensedHBM(st, elements, 3, 64, damping=[st.modal(h).damping() for h in range(4)],
+                         forced=True, gamma=2.0)
+    rng = np.random.default_rng(17)
+    z = np.r_[_state(model, 2e-2, rng), 12.0]
+    prob = ForcedProblem(model)
+    _check_problem(lambda x: prob.fun(x)[:2], z, prob.scale(z))

@@ -44,10 +44,9 @@ def rms(Q: list) -> np.ndarray:
 
 
 def main(folder: Path = Path(".")):
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    from ringdamper.plots import save_figure  # Agg backend
 
     structure, elements = system()
     frf = forced_response(structure, elements, 1.0, 0.5, 2.0, H=H, nt=NT, stability=False)
@@ -62,9 +61,7 @@ def main(folder: Path = Path(".")):
     ax.set_ylabel("response amplitude (RMS) [m]")
     ax.set_title("Chain with five nonlinear elements, H = 7")
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(folder / "chain_frf.png", dpi=120)
-    plt.close(fig)
+    save_figure(fig, folder / "chain_frf.png", dpi=120)
     return frf, elements, amplitudes
 
 

@@ -33,10 +33,9 @@ def curves() -> dict:
 
 
 def main(folder: Path = Path(".")) -> dict:
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    from ringdamper.plots import save_figure  # Agg backend
 
     out = curves()
     fig, ax = plt.subplots(figsize=(6, 4))
@@ -52,9 +51,7 @@ def main(folder: Path = Path(".")) -> dict:
     ax.set_ylabel("first-harmonic amplitude |q₁| [m]")
     ax.set_title("Duffing oscillator, F = 0.05 N")
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(folder / "duffing_frf.png", dpi=120)
-    plt.close(fig)
+    save_figure(fig, folder / "duffing_frf.png", dpi=120)
     return out
 
 

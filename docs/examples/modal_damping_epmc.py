@@ -39,10 +39,9 @@ def backbones() -> dict:
 
 
 def main(folder: Path = Path(".")) -> dict:
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    from ringdamper.plots import save_figure  # Agg backend
 
     out = backbones()
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(6, 6), sharex=True)
@@ -56,9 +55,7 @@ def main(folder: Path = Path(".")) -> dict:
     bottom.set_xlabel("modal amplitude α [kg^0.5 m]")
     top.legend()
     top.set_title("EPMC with 2 % modal damping and friction")
-    fig.tight_layout()
-    fig.savefig(folder / "modal_damping_epmc.png", dpi=120)
-    plt.close(fig)
+    save_figure(fig, folder / "modal_damping_epmc.png", dpi=120)
     return out
 
 

@@ -41,10 +41,9 @@ def fixed_and_free():
 
 
 def main(folder: Path = Path(".")):
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    from ringdamper.plots import save_figure  # Agg backend
 
     structure, elements = system()
     backbone = epmc(structure, elements, ALPHA, H=H, nt=NT)
@@ -60,9 +59,7 @@ def main(folder: Path = Path(".")):
     bottom.set_ylabel("modal damping ratio [%]")
     bottom.set_xlabel("modal amplitude α [kg^0.5 m]")
     top.set_title("Two DoF with tanh friction: first nonlinear mode, H = 21")
-    fig.tight_layout()
-    fig.savefig(folder / "tanh_friction_nm.png", dpi=120)
-    plt.close(fig)
+    save_figure(fig, folder / "tanh_friction_nm.png", dpi=120)
     return backbone, elements
 
 

@@ -66,7 +66,7 @@ def coulomb_slider(rate, E, d, r, closed, jacobian, memory, tol=1e-13, max_perio
     W[solved] = Wm[ok]
     if solved.size:
         derivative, unique = _trajectory_derivative(rate[solved], E, d[solved], W[solved], r[solved],
-                                                    closed[solved])
+                                                    closed[solved], jacobian)
         if jacobian:
             dW[solved] = derivative
         neutral[np.flatnonzero(ok)[~unique]] = True
@@ -129,12 +129,15 @@ def _newton_trajectory(c, r, guess, scale, tol):
     return W, ok, neutral
 
 
-def _trajectory_derivative(rate, E, d, W, r, closed):
+def _trajectory_derivative(rate, E, d, W, r, closed, jacobian=True):
     """``∂W/∂c`` ``(n, 2, Nt, 3C)`` at the periodic trajectories ``W`` by the implicit function theorem
-    (module docstring), and which pairs have a unique orbit (non-singular periodicity matrix)."""
+    (module docstring; None without ``jacobian``), and which pairs have a unique orbit (non-singular
+    periodicity matrix: without ``jacobian`` only that, from ``∂Φ/∂w`` alone)."""
     n, _, nt = d.shape
     C = E.shape[1]
-    _, D = _step_map(np.roll(W, 1, axis=2), np.roll(d, 1, axis=2), d, r, list(range(7)))
+    _, D = _step_map(np.roll(W, 1, axis=2), np.roll(d, 1, axis=2), d, r, list(range(7) if jacobian else range(2)))
+    if not jacobian:
+        return None, cyclic_affine(D, np.zeros((n, nt, 2, 1)))[1]
     E_prev = np.roll(E, 1, axis=0)
     G = np.zeros((n, nt, 2, 3 * C))
     G[..., :C] = (D[..., 6] * (rate[:, None] * closed)[..., None])[..., None] * E[None, :, None, :]

@@ -107,14 +107,15 @@ class _Memoryless(Element):
 
     @abstractmethod
     def force(self, u: np.ndarray, v: np.ndarray):
-        """Force ``(k, Nt)`` at the displacement and velocity samples ``u``, ``v`` ``(k, Nt)``, and its
-        derivatives ``(k, k, Nt)`` with respect to ``u`` and to ``v`` (None: no velocity dependence)."""
+        """Force ``(k, Nt)`` at the displacement and velocity samples ``u``, ``v`` ``(k, Nt)`` (``v`` None
+        for an element that does not depend on velocity), and its derivatives ``(k, k, Nt)`` with
+        respect to ``u`` and to ``v`` (None: no velocity dependence)."""
 
     def aft(self, fourier, u, jacobian, omega=None):
         if self.velocity_dependent and omega is None:
             raise ValueError(f"{type(self).__name__}: the force depends on velocity, the AFT needs omega")
-        rate = u @ fourier.dE.T                                        # ∂u/∂τ at the samples
-        f, df_du, df_dv = self.force(fourier.synth(u), rate * (omega if self.velocity_dependent else 0.0))
+        rate = u @ fourier.dE.T if self.velocity_dependent else None      # ∂u/∂τ at the samples
+        f, df_du, df_dv = self.force(fourier.synth(u), None if rate is None else omega * rate)
         lam = fourier.analyse(f)
         if not jacobian:
             return lam, None, None

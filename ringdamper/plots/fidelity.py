@@ -7,16 +7,11 @@ import numpy as np
 import pandas as pd
 from matplotlib.ticker import NullFormatter, ScalarFormatter
 
+from . import save_figure
 from .modal import FAMILY_STYLE
 
 RING_MARKERS = {"default": "o", "optimum": "s"}
 FLOOR = 1e-7  # errors below this (the reference itself, or round-off) are drawn at it
-
-
-def _save(fig, path):
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
 
 
 def plot_dials(dials: pd.DataFrame, chosen: dict, tolerance: float, path) -> None:
@@ -61,7 +56,7 @@ def plot_dials(dials: pd.DataFrame, chosen: dict, tolerance: float, path) -> Non
     axes.flat[0].legend(fontsize=7)
     for ax in list(axes.flat)[len(names):]:
         ax.set_visible(False)
-    _save(fig, path)
+    save_figure(fig, path)
 
 
 def plot_mesh(levels: pd.DataFrame, families, path) -> None:
@@ -89,7 +84,7 @@ def plot_mesh(levels: pd.DataFrame, families, path) -> None:
     ax.set_title("mesh level and element order (ND 3, operating speed)")
     ax.legend(fontsize=7, ncol=2)
     ax.grid(alpha=0.3, which="both")
-    _save(fig, path)
+    save_figure(fig, path)
 
 
 def plot_pareto(points: pd.DataFrame, path) -> None:
@@ -111,4 +106,4 @@ def plot_pareto(points: pd.DataFrame, path) -> None:
     ax.set_title("training-set size and design (20 held-out geometries)")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3, which="both")
-    _save(fig, path)
+    save_figure(fig, path)

@@ -6,7 +6,10 @@ Per harmonic h the linear DoFs are eliminated by modal summation over *all* mode
 
     z_r = ω_r² − h²ω² + i h ω (c_r − ξ),       η_{h,r} = (f_{h,r} − ψ_rᴴ Λ_h) / z_r,
 
-with ``ψ_r = B_h φ_r`` and modal force ``f = γ Φᴴ F_h``. Most modes are condensed
+with ``ψ_r = B_h φ_r`` and modal force ``f = γ Φᴴ F_h``. Damping that couples the modes (a ``C_h`` not
+diagonal in them, :mod:`ringdamper.nonlinear.structure`) makes the receptance a full matrix: every mode
+of that harmonic is then explicit, and its rows carry the coupling,
+``z_S η_S + i h ω C_off η_S``. Otherwise most modes are condensed
 (``r ∈ C_h``); a few are kept as explicit unknowns (``r ∈ S_h``): the zero-frequency modes of
 harmonic 0 (rigid ring, see *gauge* below) and, optionally, modes whose ω_r lies near ``hω``, so the
 receptance never passes a pole. Unknowns ``y``: the real slots of the contact relative
@@ -97,20 +100,27 @@ class CoreEval:
 
 
 def structural_damping(structure: Structure, H: int, zeta_s: float | np.ndarray = 0.0) -> list | None:
-    """Modal damping coefficients ``c_r`` of harmonics ``0..H`` (:meth:`ModalHarmonic.damping`): the
-    structure's own (``C`` or modal ratios), else ``2 ζ_s ω_r``; None when neither damps."""
+    """Modal damping of harmonics ``0..H``: the coefficients ``c_r`` (:meth:`ModalHarmonic.damping`),
+    the structure's own (``C`` or modal ratios) else ``2 ζ_s ω_r``, or the full matrix ``Φᴴ C Φ`` of a
+    harmonic whose ``C`` couples the modes; None when neither damps."""
     if not structure.damped and not np.any(np.asarray(zeta_s) != 0):
         return None
-    return [structure.modal(h).damping(zeta_s) for h in range(H + 1)]
+    out = []
+    for h in range(H + 1):
+        m = structure.modal(h)
+        c = m.damping(zeta_s)
+        out.append(c if m.coupling is None else np.diag(c) + m.coupling)
+    return out
 
 
 class CondensedHBM:
     """Condensed HBM of one structure, contact set and harmonic truncation.
 
     ``explicit[h]``: indices of the modes of harmonic h kept as unknowns (the zero modes of
-    harmonic 0 are always added). ``damping[h]``: modal damping coefficients ``c_r`` (None: no
-    structural damping, as in the campaign's dNNM; :func:`structural_damping` gives the
-    structure's). ``forced``: include the forcing vectors scaled by
+    harmonic 0 are always added). ``damping[h]``: modal damping coefficients ``c_r``, or the full
+    modal damping matrix (m × m) where it couples the modes, which makes every mode of that
+    harmonic explicit (None: no structural damping, as in the campaign's dNNM;
+    :func:`structural_damping` gives the structure's). ``forced``: include the forcing vectors scaled by
     ``gamma``. ``gauge_tol``: a rigid-body direction whose DC contact stiffness (singular value
     of ``K_c Ψ_Z``) is below ``gauge_tol × max(kn, kt) × ‖Ψ_Z‖₂`` counts as not held (module
     docstring, *soft hold*).
@@ -127,8 +137,7 @@ class CondensedHBM:
         self.C, self.p, self.npairs = 2 * H + 1, structure.p, structure.npairs
         self.n_d = self.C * self.p
         self.modal = [structure.modal(h) for h in range(H + 1)]
-        self.damping = [np.zeros(m.w2.size) if damping is None else np.asarray(damping[h], float)
-                        for h, m in enumerate(self.modal)]
+        self.damping, self.coupling = _split_damping(damping, self.modal)
         self.damped = damping is not None
         self.forced, self.gamma = forced, gamma
         self.static = contacts.static_force().ravel()
@@ -138,6 +147,8 @@ class CondensedHBM:
             S = np.asarray([] if explicit is None else explicit[h], int)
             if h == 0:
                 S = np.union1d(S, np.flatnonzero(m.zero))
+            if self.coupling[h] is not None:
+                S = np.arange(m.w2.size)
             mask = np.ones(m.w2.size, bool)
             mask[S] = False
             self.S.append(S)
@@ -263,10 +274,12 @@ class CondensedHBM:
             eta[Cs] = load[Cs] / z[Cs]
             eta[S] = eta_S
             etas.append(eta)
-            self._put(r, h, D[h] - m.Psi @ eta, z[S] * eta_S - load[S])
-            if jacobian:                           # ω and ξ derivatives: only z depends on them
+            self._put(r, h, D[h] - m.Psi @ eta, z[S] * eta_S + self._coupled(h, omega, eta_S) - load[S])
+            if jacobian:                           # ω and ξ derivatives: only z (and the coupling) depend on them
                 for vec, dz in ((dr_dw, dz_dw), (dr_dx, dz_dx)):
                     self._put(vec, h, self.PsiC[h] @ ((eta[Cs] / z[Cs]) * dz[Cs]), dz[S] * eta_S)
+                if h > 0 and self.coupling[h] is not None:
+                    dr_dw[self.eta_slices[h]] += real_vector(self._coupled(h, 1.0, eta_S))
                 if dLam_dw is not None:            # forces that depend on velocity: Λ depends on ω
                     extra = np.zeros(self.n_core)
                     self._put(extra, h, self.PsiC[h] @ ((self.PsiCH[h] @ dLam_dw[h]) / z[Cs]),
@@ -320,6 +333,12 @@ class CondensedHBM:
             return None
         return to_complex(aft.dlam_domega.transpose(2, 0, 1).reshape(self.C, self.p), self.H)
 
+    def _coupled(self, h: int, omega: float, eta_S: np.ndarray) -> np.ndarray | float:
+        """Coupling term ``i h ω C_off η_S`` of harmonic ``h``'s explicit rows (0 without coupling)."""
+        if self.coupling[h] is None:
+            return 0.0
+        return 1j * h * omega * (self.coupling[h] @ eta_S)
+
     def _modal_impedance(self, h, omega, xi):
         m = self.modal[h]
         c = self.damping[h]
@@ -327,6 +346,12 @@ class CondensedHBM:
         dz_dw = -2.0 * h * h * omega + 1j * h * (c - xi)
         dz_dx = np.full(m.w2.size, -1j * h * omega)
         return z, np.broadcast_to(dz_dw, z.shape), dz_dx
+
+    def explicit_impedance(self, h: int, omega: float, z: np.ndarray) -> np.ndarray:
+        """Complex matrix of harmonic ``h``'s explicit rows on ``η_S``: ``diag(z_S)`` plus the
+        coupling ``i h ω C_off`` (``z``: the modal impedances at ``omega``)."""
+        Z = np.diag(z[self.S[h]])
+        return Z if self.coupling[h] is None else Z + 1j * h * omega * self.coupling[h]
 
     def _rows(self, h: int) -> slice:
         sl = self.fourier.slots(h)
@@ -402,6 +427,7 @@ class CoreJacobian:
                  xi: float, rotation: GaugeRotation | None):
         self.model, self.kc, self.active, self.rotation = model, kc, active, rotation
         self.z = [model._modal_impedance(h, omega, xi)[0] for h in range(model.H + 1)]
+        self.omega = omega
         self.shape = (model.n_core, model.n_core)
 
     def matvec(self, v: np.ndarray) -> np.ndarray:
@@ -421,7 +447,7 @@ class CoreJacobian:
             deta_S = m.eta_explicit(v, h)
             deta_C = -(m.PsiCH[h] @ dLam[h]) / z[Cs]
             m._put(out, h, dD[h] - m.PsiC[h] @ deta_C - m.PsiS[h] @ deta_S,
-                   z[S] * deta_S + m.PsiSH[h] @ dLam[h])
+                   z[S] * deta_S + m._coupled(h, self.omega, deta_S) + m.PsiSH[h] @ dLam[h])
         if self.rotation is not None:
             self.rotation.apply(out, v)
         return out
@@ -455,10 +481,25 @@ class CoreJacobian:
                 J[sl, sl] = np.diag(z[S].real)
             else:
                 J[rows, sl] = -real_block(PsiS)
-                J[sl, sl] = real_block(np.diag(z[S]))
+                J[sl, sl] = real_block(m.explicit_impedance(h, self.omega, z))
         if self.rotation is not None:
             self.rotation.apply(J)
         return J
+
+
+def _split_damping(damping, modal) -> tuple[list, list]:
+    """Per harmonic: the modal damping coefficients ``c_r`` (zeros without ``damping``) and the
+    off-diagonal coupling (None where ``damping[h]`` is a vector)."""
+    diagonal, coupling = [], []
+    for h, m in enumerate(modal):
+        c = np.zeros(m.w2.size) if damping is None else np.asarray(damping[h])
+        if c.ndim == 2:
+            diagonal.append(np.real(np.diag(c)).copy())
+            coupling.append(c - np.diag(np.diag(c)))
+        else:
+            diagonal.append(c.astype(float))
+            coupling.append(None)
+    return diagonal, coupling
 
 
 def _span(a: np.ndarray, b: np.ndarray) -> np.ndarray:

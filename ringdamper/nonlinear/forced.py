@@ -49,7 +49,8 @@ class ForcedProblem:
         etas = []
         for h, mh in enumerate(m.modal):
             z, _, _ = m._modal_impedance(h, omega, 0.0)
-            A = np.diag(z) + mh.Psi.conj().T @ (stiffness[:, None] * mh.Psi)
+            Z = np.diag(z) if m.coupling[h] is None else m.explicit_impedance(h, omega, z)   # all modes explicit
+            A = Z + mh.Psi.conj().T @ (stiffness[:, None] * mh.Psi)
             eta = np.linalg.lstsq(A, m.gamma * mh.f, rcond=None)[0] if np.any(mh.f) else \
                 np.zeros(z.size, complex)
             etas.append(eta)

@@ -23,7 +23,9 @@ Large models (a real ring keeps hundreds of modes per harmonic) are reduced firs
 so they are condensed onto the contact at ``λ = 0`` with their exact receptance ``1/z_r`` (a
 residual flexibility ``G``, positive because ``ω_r > hω``, as in the condensed harmonic balance);
 the contact stiffness the kept modes see is then ``K_eff = (I + K_c G)⁻¹ K_c``. (Condensing modes
-*below* a harmonic as well would add negative flexibility and spurious real exponents.)
+*below* a harmonic as well would add negative flexibility and spurious real exponents.) A damping
+that couples the modes (``C_off``, :mod:`ringdamper.nonlinear.structure`) keeps every mode of its
+harmonic: ``Z_h`` and ``Δ₁`` take ``+ i h ω C_off`` and ``+ C_off``.
 
 Gauged rigid-body directions. Where the condensed HBM holds a free rigid-body direction of the ring
 by its gauge (:mod:`ringdamper.nonlinear.condensed`: the mean position pinned, the unbalanced mean
@@ -75,23 +77,30 @@ def modal_hill_matrices(model, ev, omega: float, band: float = BAND):
     if ev.aft.dlam_domega is not None:
         raise ValueError("Hill's stability is not available for forces that depend on velocity "
                          "(TanhFriction): compute the forced response with stability=False")
-    Z, D1, P = [], [], []
+    Z, D1, P, kept = [], [], [], []
     G = np.zeros((model.n_d, model.n_d))
     for h, m in enumerate(model.modal):
         z, _, _ = model._modal_impedance(h, omega, 0.0)
         c = model.damping[h]
         keep = np.sqrt(m.w2) <= (model.H + band) * omega
+        coupling = model.coupling[h]
+        if coupling is not None:                    # damping that couples the modes: keep them all
+            keep[:] = True
+        kept.append(np.flatnonzero(keep))
         rows = model._rows(h)
         rest = m.Psi[:, ~keep]
         receptance = (rest / z[~keep]) @ rest.conj().T
         if h == 0:
             Z.append(np.diag(z[keep].real))
-            D1.append(np.diag(c[keep]))
+            D1.append(np.diag(c[keep]) if coupling is None else np.diag(c) + coupling)
             P.append((rows, m.Psi[:, keep].real))
             G[rows, rows] = receptance.real
         else:
-            Z.append(real_block(np.diag(z[keep])))
-            D1.append(real_block(np.diag(c[keep] + 2j * h * omega)))
+            Zh, Dh = np.diag(z[keep]), np.diag(c[keep] + 2j * h * omega)
+            if coupling is not None:                # every mode kept: the coupling's full matrix
+                Zh, Dh = model.explicit_impedance(h, omega, z), Dh + coupling
+            Z.append(real_block(Zh))
+            D1.append(real_block(Dh))
             P.append((rows, real_block(m.Psi[:, keep])))
             G[rows, rows] = real_block(receptance)
     Pfull = np.zeros((model.n_d, sum(b.shape[1] for _, b in P)))
@@ -105,10 +114,9 @@ def modal_hill_matrices(model, ev, omega: float, band: float = BAND):
         KP = np.linalg.solve(np.eye(model.n_d) + (Kc @ G), KP)
     J, D = sla.block_diag(*Z) + Pfull.T @ KP, sla.block_diag(*D1)
     if ev.gauge.shape[1]:                           # hold the gauged rigid-body directions
-        kept0 = np.flatnonzero(np.sqrt(model.modal[0].w2) <= (model.H + band) * omega)
         rigid = model.S[0][model.zero_modes]
         E = np.zeros((J.shape[0], ev.gauge.shape[1]))
-        E[np.searchsorted(kept0, rigid)] = ev.gauge
+        E[np.searchsorted(kept[0], rigid)] = ev.gauge
         Q = sla.null_space(E.T)
         J, D = Q.T @ J @ Q, Q.T @ D @ Q
     return J, D

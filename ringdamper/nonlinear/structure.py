@@ -11,10 +11,15 @@ Harmonic 0 is ND 0 and real. A non-cyclic structure uses the same real matrices 
 Each harmonic is diagonalised once (``K_h φ = ω_r² M_h φ``, ``φᴴ M_h φ = 1``, all modes): this is
 what the exact condensation of :mod:`ringdamper.nonlinear.condensed` sums over.
 
-Structural damping is given per harmonic either as a viscous matrix ``C_h`` (diagonal in the modes:
-``φ_rᴴ C_h φ_s = 0`` for ``r ≠ s``, e.g. Rayleigh ``a M + b K``) or as modal damping ratios ``ζ_r`` of
-the modes of ``(K_h, M_h)`` (``C_h = M_h Φ diag(2 ζ_r ω_r) Φᴴ M_h``); either gives the modal
-coefficients ``c_r = φ_rᴴ C_h φ_r`` that every analysis uses (:meth:`ModalHarmonic.damping`).
+Structural damping is given per harmonic either as a viscous matrix ``C_h`` or as modal damping
+ratios ``ζ_r`` of the modes of ``(K_h, M_h)`` (``C_h = M_h Φ diag(2 ζ_r ω_r) Φᴴ M_h``); either gives the
+modal damping ``Φᴴ C_h Φ``. Its diagonal, the coefficients ``c_r = φ_rᴴ C_h φ_r``, is what the modal
+receptances use (:meth:`ModalHarmonic.damping`). A ``C_h`` that is *not* diagonal in the modes
+(``φ_rᴴ C_h φ_s ≠ 0`` for some ``r ≠ s``, relative to the largest modal entry above
+:data:`COUPLING_TOL`: a dashpot on one DoF, damping non-proportional to ``(K, M)``) couples the modes;
+its off-diagonal part is kept as ``ModalHarmonic.coupling`` and the analyses then keep every mode of
+that harmonic as an unknown instead of condensing it (:mod:`ringdamper.nonlinear.condensed`), exact
+and meant for the small systems where such damping is given.
 Every matrix and vector is checked at construction: the message names the argument, the shape
 expected and the shape given.
 """
@@ -29,14 +34,17 @@ import scipy.linalg as sla
 
 from ringdamper.fem.cyclic import interblade_phase, nodal_diameter  # noqa: F401 (re-exported)
 
+#: off-diagonal modal damping below this fraction of the largest modal entry counts as modal (dropped)
+COUPLING_TOL = 1e-8
+
 
 @dataclass
 class HarmonicData:
     """Linear data of one harmonic: ``M``, ``K`` (n × n, Hermitian), ``B`` (p × n, contact relative
     coordinates), ``response`` (n,) row giving the response DoF, ``force`` (n,) forcing vector
-    (None: unforced), and optionally the structural damping: ``C`` (n × n, diagonal in the modes)
-    or ``zeta``, modal damping ratios of the modes of ``(K, M)`` (scalar or one per mode, ascending
-    frequency), not both."""
+    (None: unforced), and optionally the structural damping: ``C`` (n × n) or ``zeta``, modal
+    damping ratios of the modes of ``(K, M)`` (scalar or one per mode, ascending frequency), not
+    both."""
 
     M: np.ndarray
     K: np.ndarray
@@ -75,7 +83,8 @@ class HarmonicData:
 class ModalHarmonic:
     """Modes of one harmonic: ``w2`` (ω_r², zero modes set to exactly 0), ``Phi`` (n × m,
     mass-normalised), ``Psi = B Phi`` (p × m), modal force ``f = Phiᴴ force``, modal response row
-    ``res = response Phi``, modal damping ``c = diag(Phiᴴ C Phi)`` (None without ``C``), and the
+    ``res = response Phi``, modal damping ``c = diag(Phiᴴ C Phi)`` (None without ``C``), its
+    off-diagonal part ``coupling`` (m × m, None when ``C`` is diagonal in the modes) and the
     boolean mask ``zero`` of zero-frequency (rigid-body) modes."""
 
     h: int
@@ -86,6 +95,7 @@ class ModalHarmonic:
     res: np.ndarray
     c: np.ndarray | None
     zero: np.ndarray = field(repr=False)
+    coupling: np.ndarray | None = field(default=None, repr=False)
 
     def damping(self, zeta_s: float | np.ndarray = 0.0) -> np.ndarray:
         """Modal damping coefficients ``c_r`` (``q̇`` term ``c_r η̇_r``): the structure's (``C`` or
@@ -193,22 +203,16 @@ class Structure:
         if h > 0 and np.any(w2 < 0):
             raise ValueError(f"harmonic {h}: K_h is not positive semi-definite")
         f = Phi.conj().T @ hd.force if hd.force is not None else np.zeros(Phi.shape[1], complex)
-        c = None
+        c = coupling = None
         if hd.zeta is not None:
             c = 2.0 * np.broadcast_to(np.asarray(hd.zeta, float), w2.shape) * np.sqrt(w2)
         elif hd.C is not None:
-            Cm = Phi.conj().T @ hd.C @ Phi
-            off = Cm - np.diag(np.diag(Cm))
-            if np.max(np.abs(off)) > 1e-8 * max(np.max(np.abs(Cm)), np.finfo(float).tiny):
-                raise ValueError(f"harmonic {h}.C: not diagonal in the modes of (K, M) (largest "
-                                 f"off-diagonal modal entry {np.max(np.abs(off)):.3g}); the exact modal "
-                                 "condensation needs modal damping, e.g. Rayleigh a M + b K, or "
-                                 "modal ratios zeta")
-            c = np.real(np.diag(Cm))
+            c, coupling = _modal_damping(Phi, hd.C)
         mh = ModalHarmonic(h=h, w2=w2, Phi=Phi, Psi=hd.B @ Phi, f=f, res=hd.response @ Phi,
-                           c=c, zero=zero)
+                           c=c, zero=zero, coupling=coupling)
         if h == 0:
             mh.Psi, mh.f, mh.res = mh.Psi.real, mh.f.real, mh.res.real
+            mh.coupling = None if coupling is None else coupling.real
         self._modal_cache[h] = mh
         return mh
 
@@ -219,6 +223,16 @@ class Structure:
         K = hd.K + hd.B.conj().T @ (stiffness[:, None] * hd.B)
         w2, Phi = _mass_normalised_modes(K, hd.M, real=(h == 0))
         return np.sqrt(np.maximum(w2, 0.0)), Phi
+
+
+def _modal_damping(Phi: np.ndarray, C: np.ndarray):
+    """``(c, coupling)`` of the modal damping ``Φᴴ C Φ``: its real diagonal and its off-diagonal
+    part (None when that is below :data:`COUPLING_TOL` of the largest modal entry)."""
+    Cm = Phi.conj().T @ C @ Phi
+    diagonal = np.diag(Cm)
+    off = Cm - np.diag(diagonal)
+    scale = max(np.max(np.abs(Cm)), np.finfo(float).tiny)
+    return np.real(diagonal), (off if np.max(np.abs(off)) > COUPLING_TOL * scale else None)
 
 
 def _mass_normalised_modes(K, M, real: bool):

@@ -7,7 +7,7 @@ import zlib
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes
+from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes, structural_damping
 from ringdamper.nonlinear.epmc import EPMCProblem
 from ringdamper.nonlinear.forced import ForcedProblem
 from ringdamper.nonlinear.fourier import Fourier
@@ -171,8 +171,14 @@ def test_contact_jacobian_restarted_from_own_periodic_state(state):
     assert np.max(np.abs(J - Jfd)) <= 1e-6 * np.max(np.abs(Jfd))
 
 
-def _chain_with_every_element(H):
-    """3-DoF chain with a cubic spring, a stop, a Jenkins element and tanh friction (``Elements``)."""
+#: structural damping of the chain: Rayleigh (diagonal in the modes), or with a dashpot on DoF 1 added,
+#: which couples the modes (every mode then explicit, the coupling in its rows)
+CHAIN_DAMPING = {"modal": np.zeros((3, 3)), "coupled": np.diag([2.0, 0.0, 0.0])}
+
+
+def _chain_with_every_element(H, dashpots=CHAIN_DAMPING["modal"]):
+    """3-DoF chain with a cubic spring, a stop, a Jenkins element and tanh friction (``Elements``),
+    damping ``0.01 K + dashpots``."""
     from ringdamper.nonlinear.elements import CubicSpring, Elements, Jenkins, TanhFriction, UnilateralSpring
     from ringdamper.nonlinear.structure import Structure
 
@@ -180,25 +186,27 @@ def _chain_with_every_element(H):
                          Jenkins([0, 1, -1], 30.0, 0.5), TanhFriction([1, -1, 0], 0.4, 0.05)], 3)
     K = np.array([[2.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 2.0]]) * 100.0
     e = np.eye(3)[1]
-    return Structure.real(np.eye(3), K, elements.B, e, e, H=H, C=0.01 * K), elements
+    return Structure.real(np.eye(3), K, elements.B, e, e, H=H, C=0.01 * K + dashpots), elements
 
 
+@pytest.mark.parametrize("damping", list(CHAIN_DAMPING))
 @pytest.mark.parametrize("amp", [5e-3, 5e-2])
-def test_epmc_residual_jacobian_with_every_element_kind(amp):
+def test_epmc_residual_jacobian_with_every_element_kind(amp, damping):
     """Including the velocity-dependent tanh friction: its ∂Λ/∂ω in the ω column and in the
-    amplitude condition's ω derivative."""
-    st, elements = _chain_with_every_element(3)
-    model = CondensedHBM(st, elements, 3, 64, damping=[st.modal(h).damping() for h in range(4)])
+    amplitude condition's ω derivative; and damping that couples the modes."""
+    st, elements = _chain_with_every_element(3, CHAIN_DAMPING[damping])
+    model = CondensedHBM(st, elements, 3, 64, damping=structural_damping(st, 3))
+    assert (model.coupling[1] is not None) == (damping == "coupled")
     rng = np.random.default_rng(13)
     z = np.r_[_state(model, amp, rng), 12.0, 0.5]
     prob = EPMCProblem(model, phase_index=model.slot_index(1, True, 0))
     _check_problem(lambda x: prob.fun(x, np.log(1e-2))[:2], z, prob.scale(z))
 
 
-def test_forced_residual_jacobian_with_every_element_kind():
-    st, elements = _chain_with_every_element(3)
-    model = CondensedHBM(st, elements, 3, 64, damping=[st.modal(h).damping() for h in range(4)],
-                         forced=True, gamma=2.0)
+@pytest.mark.parametrize("damping", list(CHAIN_DAMPING))
+def test_forced_residual_jacobian_with_every_element_kind(damping):
+    st, elements = _chain_with_every_element(3, CHAIN_DAMPING[damping])
+    model = CondensedHBM(st, elements, 3, 64, damping=structural_damping(st, 3), forced=True, gamma=2.0)
     rng = np.random.default_rng(17)
     z = np.r_[_state(model, 2e-2, rng), 12.0]
     prob = ForcedProblem(model)

@@ -12,12 +12,19 @@ Oracles:
   (``c_r = a`` for every mode), i.e. the damping is counted once.
 * Forced response of the linear system: every point on the receptance ``(K − ω²M + iωC)⁻¹ F``
   (1e-8 relative, Newton tolerance 1e-12).
-* Time domain: shooting (``ringdamper.nonlinear.shooting``) with modal ratios agrees with the damped
-  EPMC at H = 15 on the friction 2-DoF system (ω within 1e-6, ζ within 1e-6; measured 2e-8 and 1e-7).
+* Damping not diagonal in the modes (a dashpot on one DoF): every mode becomes explicit; the EPMC of
+  the linear system solves ``det(K − ω²M + iω(C − ξM)) = 0`` (solved here directly; 1e-9 on ω and
+  Newton's 1e-8·ω on ξ, measured 3e-10 and 1e-8·ξ with ζ = 0.56 %); the forced response is the
+  receptance and its Hill exponents the eigenvalues of ``λ²M + λC + K`` (largest real part to 1e-9).
+* Time domain: shooting (``ringdamper.nonlinear.shooting``) with modal ratios, and with a dashpot,
+  agrees with the damped EPMC at H = 15 on the friction 2-DoF system (ω within 1e-6, ζ within 1e-6;
+  measured 2e-8 and 1e-7 with modal ratios, 2e-8 and 9e-8 with the dashpot).
 """
 import numpy as np
 import pytest
+from scipy.optimize import fsolve
 
+from ringdamper.nonlinear.condensed import CondensedHBM, structural_damping
 from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc, linear_limit
 from ringdamper.nonlinear.frf import forced_response
@@ -32,6 +39,7 @@ B = np.array([[0.0, 0.0], [0.0, 1.0], [0.0, 0.0]])       # one pair on DoF 2 (ta
 E = np.eye(2)[0]
 FRICTION = FrictionContacts(kn=1e6, kt=1e3, mu=0.25, N0=20.0, gap=0.0)
 OPEN = FrictionContacts(kn=1e6, kt=1e3, mu=0.25, N0=0.0, gap=1.0)   # never closes
+DASHPOT = np.diag([6.0, 0.0])           # on DoF 1 only: not diagonal in the modes of (K, M)
 
 
 def _natural_frequencies():
@@ -82,8 +90,10 @@ def test_forced_response_of_the_damped_linear_system_is_its_receptance():
     np.testing.assert_allclose(frf.q_h1, exact, rtol=1e-8)
 
 
-def test_shooting_with_modal_ratios_agrees_with_the_damped_epmc():
-    st = _structure(H=15, zeta=np.array([0.01, 0.03]))
+@pytest.mark.parametrize("damping", [{"zeta": np.array([0.01, 0.03])}, {"C": 0.1 * DASHPOT}],
+                         ids=["modal_ratios", "dashpot"])
+def test_shooting_with_structural_damping_agrees_with_the_damped_epmc(damping):
+    st = _structure(H=15, **damping)
     _, phi = st.stuck_modes(FRICTION.stuck_stiffness().ravel())
     alpha = np.array([3.0, 10.0]) * linear_limit(st, FRICTION, phi[:, 0])
     bb = epmc(st, FRICTION, alpha, H=15, nt=1024, tol=1e-10)
@@ -106,10 +116,48 @@ def test_damping_given_twice_is_refused_by_name():
         _structure(C=3.0 * M, zeta=0.01)
 
 
-def test_damping_not_diagonal_in_the_modes_is_refused_with_its_size():
-    C = np.array([[1.0, 0.0], [0.0, 0.0]])                 # a dashpot on DoF 1 only
-    with pytest.raises(ValueError, match=r"harmonic \d\.C: not diagonal in the modes"):
-        epmc(_structure(C=C), OPEN, np.array([1e-3]), H=1)
+def _epmc_eigenvalue(C, omega0):
+    """The EPMC's linear solution, solved directly: ``(K − ω² M + i ω (C − ξ M)) φ = 0`` has a
+    non-trivial ``φ``, i.e. ``det = 0`` (two real equations for ω and ξ), from ``(omega0, 0)``."""
+    def det(x):
+        w, xi = x
+        d = np.linalg.det(K - w * w * M + 1j * w * (C - xi * M))
+        return [d.real, d.imag]
+    return fsolve(det, [omega0, 0.0], xtol=1e-14)
+
+
+def test_a_dashpot_on_one_dof_couples_the_modes_and_every_mode_becomes_explicit():
+    st = _structure(C=DASHPOT)
+    off = st.modal(1).coupling
+    assert off is not None and abs(off[0, 1]) > 0.1 * np.max(np.abs(st.modal(1).c))
+    model = CondensedHBM(st, OPEN, 2, 16, damping=structural_damping(st, 2))
+    assert all(np.array_equal(S, np.arange(2)) for S in model.S)
+    assert all(Cs.size == 0 for Cs in model.Cset)
+    assert _structure(C=3.0 * M + 2e-4 * K).modal(1).coupling is None
+
+
+@pytest.mark.parametrize("shortcut", [True, False], ids=["stuck_shortcut", "continuation"])
+def test_non_modal_damping_gives_the_epmc_eigenvalue_at_every_amplitude(shortcut):
+    w, xi = _epmc_eigenvalue(DASHPOT, _natural_frequencies()[0])
+    assert xi > 0.5                                         # the dashpot damps the first mode
+    bb = epmc(_structure(C=DASHPOT), OPEN, np.geomspace(1e-3, 1e-1, 5), H=3, stuck_shortcut=shortcut)
+    assert np.all(bb.status == Status.CONVERGED)
+    np.testing.assert_allclose(bb.omega, w, rtol=1e-9)
+    np.testing.assert_allclose(bb.xi, xi, rtol=0, atol=1e-8 * w)     # Newton's tolerance (ξ scaled by ω)
+
+
+def test_forced_response_with_non_modal_damping_is_its_receptance_and_hill_its_eigenvalues():
+    """Every point on ``(K − ω²M + iωC)⁻¹ F``; the Hill exponents of a linear system are its
+    eigenvalues ``λ² M + λ C + K`` (in the fundamental strip), so the largest real part is the
+    least damped one's at every point."""
+    w1 = _natural_frequencies()[0]
+    frf = forced_response(_structure(C=DASHPOT), OPEN, 1.0, 0.9 * w1, 1.1 * w1, H=1, tol=1e-12)
+    assert frf.status == Status.CONVERGED and frf.omega.size > 5
+    exact = [abs(np.linalg.solve(K - w * w * M + 1j * w * DASHPOT, E)[0]) for w in frf.omega]
+    np.testing.assert_allclose(frf.q_h1, exact, rtol=1e-8)
+    state = np.block([[np.zeros((2, 2)), np.eye(2)], [-np.linalg.solve(M, K), -np.linalg.solve(M, DASHPOT)]])
+    np.testing.assert_allclose(frf.growth, np.max(np.linalg.eigvals(state).real), rtol=1e-9)
+    assert np.all(frf.stable)
 
 
 def test_damping_not_proportional_to_the_stuck_system_gives_its_complex_eigenvalue():

@@ -305,27 +305,36 @@ class CondensedHBM:
         else:
             out[rows], out[sl] = real_vector(rd), real_vector(re)
 
-    def modal_norm2(self, ev: CoreEval, omega: float, xi: float, h: int = 1):
-        """``Σ_r |η_{h,r}|² = Q_hᴴ M_h Q_h`` and its gradient w.r.t. ``y``, ω and ξ."""
+    def amplitude2(self, ev: CoreEval, omega: float, xi: float, row: np.ndarray | None = None, h: int = 1):
+        """Squared amplitude of harmonic ``h`` and its gradient w.r.t. ``y``, ω and ξ: the modal
+        ``Σ_r |η_{h,r}|² = Q_hᴴ M_h Q_h`` (``row`` None), or ``|ρ η_h|² = |w Q_h|²`` of a DoF or
+        combination of DoFs ``w`` given as its modal row ``ρ = w Φ_h``. Written ``n² = v·η``-linearised:
+        ``δ(n²) = 2 Re(v δη)`` with ``v = η̄`` (modal) or ``v = (ρ η)‾ ρ`` (row), and
+        ``δη_C = −(Ψ_Cᴴ δΛ + η_C δz)/z_C`` for the condensed modes."""
         S, Cs = self.S[h], self.Cset[h]
         eta = ev.eta[h]
+        if row is None:
+            n2, v = float(np.sum(np.abs(eta) ** 2)), np.conj(eta)
+        else:
+            a = row @ eta
+            n2, v = float(abs(a) ** 2), np.conj(a) * row
         z, dz_dw, dz_dx = self._modal_impedance(h, omega, xi)
-        etaC = eta[Cs]
+        etaC, vC = eta[Cs], v[Cs]
         grad = np.zeros(self.n_core)
-        u = self.PsiC[h] @ (etaC * np.conj(1.0 / z[Cs]))
-        row = -2.0 * (u.real[None] if h == 0 else real_vector(u)[None])
+        u = self.PsiC[h] @ (np.conj(vC) * np.conj(1.0 / z[Cs]))
+        through_contacts = -2.0 * (u.real[None] if h == 0 else real_vector(u)[None])
         kc = ev.aft.jac
         active = np.any(kc.reshape(self.npairs, -1) != 0, axis=1)
-        grad[:self.n_d] = _apply_contact_jacobian(row, kc, self.fourier.slots(h), active, self.p)[0]
-        eS = eta[S]
-        grad[self.eta_slices[h]] = 2.0 * (eS.real if h == 0 else real_vector(eS))
-        a2 = np.abs(etaC) ** 2
-        d_w = -2.0 * np.sum(a2 * np.real(dz_dw[Cs] / z[Cs]))
-        d_x = -2.0 * np.sum(a2 * np.real(dz_dx[Cs] / z[Cs]))
+        grad[:self.n_d] = _apply_contact_jacobian(through_contacts, kc, self.fourier.slots(h), active, self.p)[0]
+        vS = np.conj(v[S])
+        grad[self.eta_slices[h]] = 2.0 * (vS.real if h == 0 else real_vector(vS))
+        weights = np.abs(etaC) ** 2 if row is None else vC * etaC        # v_r η_r
+        d_w = -2.0 * _sum_real_product(weights, dz_dw[Cs] / z[Cs])
+        d_x = -2.0 * _sum_real_product(weights, dz_dx[Cs] / z[Cs])
         dLam_dw = self._velocity_term(ev.aft)
         if dLam_dw is not None:                    # η_C = (f − Ψ_Cᴴ Λ)/z, Λ depending on ω
-            d_w += 2.0 * np.sum(np.real(np.conj(etaC) * (-(self.PsiCH[h] @ dLam_dw[h]) / z[Cs])))
-        return float(np.sum(np.abs(eta) ** 2)), grad, d_w, d_x
+            d_w += 2.0 * np.sum(np.real(vC * (-(self.PsiCH[h] @ dLam_dw[h]) / z[Cs])))
+        return n2, grad, d_w, d_x
 
     def _velocity_term(self, aft) -> np.ndarray | None:
         """``∂Λ_h/∂ω`` per harmonic (complex, contact layout) of forces that depend on velocity, or None."""
@@ -485,6 +494,11 @@ class CoreJacobian:
         if self.rotation is not None:
             self.rotation.apply(J)
         return J
+
+
+def _sum_real_product(a: np.ndarray, b: np.ndarray) -> float:
+    """``Σ Re(a_k b_k)`` as ``Σ (Re a_k Re b_k − Im a_k Im b_k)`` (a real ``a`` adds exact zeros)."""
+    return float(np.sum(a.real * b.real - a.imag * b.imag))
 
 
 def _split_damping(damping, modal) -> tuple[list, list]:

@@ -81,7 +81,7 @@ def equilibrated_condition(J: np.ndarray, trivial: np.ndarray | None, scale: np.
 def point_condition(backbone: Backbone, i: int) -> float:
     """κ (module docstring) of grid point ``i`` of ``backbone``, from its Jacobian at the solution."""
     model = backbone.model
-    problem = EPMCProblem(model, backbone.phase_index, backbone.drift_tol)
+    problem = EPMCProblem(model, backbone.phase_index, backbone.drift_tol, backbone.amplitude)
     z = backbone.state(i)
     _, J, trivial, _, _ = problem.fun(z, np.log(backbone.alpha[i]), True)
     return equilibrated_condition(dense(J), trivial, problem.scale(z))

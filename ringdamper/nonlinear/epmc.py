@@ -14,7 +14,9 @@ solved by harmonic balance (condensed, :mod:`ringdamper.nonlinear.condensed`) wi
 ``z = [y, ω, ξ]`` and two extra equations:
 
 * amplitude: ``½ log(Q_1ᴴ M_1 Q_1) − log α = 0`` (fundamental harmonic mass-normalised,
-  ``Q_h = α ψ_h`` with ``ψ_1ᴴ M_1 ψ_1 = 1``; ``Q_1ᴴ M_1 Q_1 = Σ_r |η_{1,r}|²``);
+  ``Q_h = α ψ_h`` with ``ψ_1ᴴ M_1 ψ_1 = 1``; ``Q_1ᴴ M_1 Q_1 = Σ_r |η_{1,r}|²``: α is the *modal
+  amplitude*, the campaign's), or, with ``amplitude = w`` (a DoF as a unit row, or any combination
+  of DoFs), ``log |w Q_1| − log α = 0``: α is the amplitude of harmonic 1 of ``w q``;
 * phase: the sine slot of harmonic 1 of one unknown (the largest of the linear mode's contact
   coordinates, or explicit modal coordinates) is zero.
 
@@ -51,7 +53,8 @@ class Backbone:
     ``phase_index`` the unknown fixed by the phase condition (what :meth:`state` and
     :class:`EPMCProblem` need to restart from a point), ``pole_window`` the ``(lo, hi)`` band of
     :func:`pole_modes` that chose its explicit modes and ``drift_tol`` the DRIFT limit (what
-    :func:`resolve_point` needs to build the same problem at another H)."""
+    :func:`resolve_point` needs to build the same problem at another H); ``amplitude`` the row
+    ``w`` whose harmonic-1 amplitude α is (None: the modal amplitude)."""
 
     alpha: np.ndarray
     omega: np.ndarray
@@ -71,6 +74,7 @@ class Backbone:
     wall_time: float = 0.0
     pole_window: tuple = (0.0, 0.0)
     drift_tol: float = 1e-8
+    amplitude: np.ndarray | None = None
 
     def state(self, i: int) -> np.ndarray:
         """Unknown vector ``z = [y, ω, ξ]`` of grid point ``i``; sets the model's pinned
@@ -94,21 +98,26 @@ class Backbone:
 
 
 class EPMCProblem:
-    """Residual ``[r_core; amplitude; phase]`` of ``z = [y, ω, ξ]`` at ``s = log α``."""
+    """Residual ``[r_core; amplitude; phase]`` of ``z = [y, ω, ξ]`` at ``s = log α``; ``amplitude``:
+    the row ``w`` (n,) whose harmonic-1 amplitude α is, None for the modal amplitude."""
 
-    def __init__(self, model: CondensedHBM, phase_index: int, drift_tol: float = 1e-8):
+    def __init__(self, model: CondensedHBM, phase_index: int, drift_tol: float = 1e-8,
+                 amplitude: np.ndarray | None = None):
         self.model, self.phase_index, self.drift_tol = model, phase_index, drift_tol
+        self.amplitude = amplitude
+        self.row = None if amplitude is None else amplitude @ model.modal[1].Phi     # ρ = w Φ_1
         self.n = model.n_core + 2
 
     def fun(self, z: np.ndarray, s: float, jacobian: bool = True):
         m = self.model
         y, omega, xi = z[:-2], z[-2], z[-1]
         ev = m.evaluate(y, omega, xi, jacobian)
-        n2 = float(np.sum(np.abs(ev.eta[1]) ** 2))
+        eta1 = ev.eta[1]
+        n2 = float(np.sum(np.abs(eta1) ** 2)) if self.row is None else float(abs(self.row @ eta1) ** 2)
         r = np.r_[ev.r, 0.5 * np.log(n2) - s, y[self.phase_index]]
         if not jacobian:
             return r, None, None, m.n_core, ev
-        n2, g, d_w, d_x = m.modal_norm2(ev, omega, xi)
+        n2, g, d_w, d_x = m.amplitude2(ev, omega, xi, self.row)
         amplitude = np.r_[g, d_w, d_x] / (2 * n2)
         phase = np.zeros(self.n)
         phase[self.phase_index] = 1.0
@@ -163,8 +172,11 @@ def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, 
          pole_band: float = 0.1, tol: float = 1e-8, max_iter: int = 20,
          steps: StepControl | None = None, gauge_reference: np.ndarray | None = None,
          alpha_start: float | None = None, drift_tol: float = 1e-8,
-         stuck_shortcut: bool = True, max_arc_points: int | None = None) -> Backbone:
-    """dNNM backbone of one mode over the increasing modal-amplitude grid ``alpha``.
+         stuck_shortcut: bool = True, max_arc_points: int | None = None,
+         amplitude: np.ndarray | None = None) -> Backbone:
+    """dNNM backbone of one mode over the increasing amplitude grid ``alpha``: modal amplitudes, or
+    with ``amplitude = w`` (n,), amplitudes of harmonic 1 of ``w q`` (a DoF: a unit row; a relative
+    displacement: a difference of two; module docstring).
 
     ``mode``/``omega_target``: which linearised stuck mode of harmonic 1 to follow (index in
     ascending frequency, or the one closest to ``omega_target`` [rad/s]). ``pole_band``: modes of
@@ -194,13 +206,14 @@ def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, 
     steps = steps or default_steps()
     contacts = contacts.for_pairs(structure.npairs)
     omega0, xi0, phi = _stuck_mode(structure, contacts, mode, omega_target)
+    phi = phi / _measure_of_mode(structure, amplitude, phi)     # unit amplitude in the grid's measure
     window = (omega0 * (1 - 2 * pole_band), omega0 * (1 + pole_band))
     model = CondensedHBM(structure, contacts, H, nt, explicit=pole_modes(structure, H, *window),
                          damping=structural_damping(structure, H))
     if gauge_reference is not None:
         model.eta_ref = np.asarray(gauge_reference, float).copy()
     _, phase_index = _initial_guess(model, phi, omega0, 1.0)
-    problem = EPMCProblem(model, phase_index, drift_tol)
+    problem = EPMCProblem(model, phase_index, drift_tol, amplitude)
     onset = stick_limit(structure, contacts, phi)
     stuck = _stuck_points(problem, phi, omega0, alpha[alpha < (1 - 1e-9) * onset]) if stuck_shortcut else []
     rest = alpha[len(stuck):]
@@ -246,6 +259,24 @@ def _stuck_mode(structure, contacts, mode, omega_target):
     phi = vectors[:n, k]
     phi = phi / np.sqrt(np.real(np.vdot(phi, hd.M @ phi)))
     return abs(lam[k]), -2.0 * lam[k].real, phi
+
+
+def _measure_of_mode(structure: Structure, amplitude, phi: np.ndarray) -> float:
+    """Amplitude ``|w φ|`` of the measure ``w`` on the mass-normalised mode ``φ`` (1 for the modal
+    amplitude): ``φ`` divided by it has unit amplitude in the grid's measure (the stick and linear
+    limits of that mode are then grid amplitudes). Raises, naming ``amplitude``, for a row of the
+    wrong shape or one the mode does not move."""
+    if amplitude is None:
+        return 1.0
+    n = structure.harmonics[1].M.shape[0]
+    if np.shape(amplitude) != (n,):
+        raise ValueError(f"amplitude: expected a row of shape ({n},) (one weight per DoF), got "
+                         f"{np.shape(amplitude)}")
+    measure = abs(np.asarray(amplitude) @ phi)
+    if not measure > 1e-12 * np.linalg.norm(amplitude) * np.max(np.abs(phi)):
+        raise ValueError("amplitude: the followed mode does not move this row (w φ = 0); choose a "
+                         "DoF the mode moves, or the modal amplitude (amplitude=None)")
+    return float(measure)
 
 
 def linear_limit(structure, contacts, phi):
@@ -338,7 +369,8 @@ def resolve_point(backbone: Backbone, i: int, H: int, nt: int | None = None, tol
     model.pinned = backbone.pinned[i].copy()
     if model.zero_modes.size:
         model.eta_ref = z0[model.eta_slices[0].start + model.zero_modes].copy()
-    problem = EPMCProblem(model, _same_unknown(base, model, backbone.phase_index), backbone.drift_tol)
+    problem = EPMCProblem(model, _same_unknown(base, model, backbone.phase_index), backbone.drift_tol,
+                          backbone.amplitude)
     s = np.log(backbone.alpha[i])
     res = newton(lambda z, jac: problem.fun(z, s, jac), z0, problem.scale, tol, max_iter)
     if not res.converged:
@@ -370,7 +402,7 @@ def continue_point(backbone: Backbone, j: int, alpha: float, tol: float = 1e-8, 
     z0 = backbone.state(j)
     if model.zero_modes.size:
         model.eta_ref = z0[model.eta_slices[0].start + model.zero_modes].copy()
-    problem = EPMCProblem(model, backbone.phase_index, backbone.drift_tol)
+    problem = EPMCProblem(model, backbone.phase_index, backbone.drift_tol, backbone.amplitude)
     run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log([alpha]), problem.scale,
                                  steps or default_steps(), tol, max_iter,
                                  accept=problem.accept, s_start=np.log(backbone.alpha[j]),
@@ -441,4 +473,5 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall, window
     return Backbone(alpha=alpha, omega=omega, xi=xi, zeta=xi / (2 * omega), status=status,
                     reason=reason, iterations=iters, d=d, lam=lam, eta=eta, pinned=pinned,
                     drift=drift, branch=branch, model=model, phase_index=problem.phase_index,
-                    wall_time=wall, pole_window=tuple(window), drift_tol=problem.drift_tol)
+                    wall_time=wall, pole_window=tuple(window), drift_tol=problem.drift_tol,
+                    amplitude=problem.amplitude)

@@ -211,3 +211,23 @@ def test_forced_residual_jacobian_with_every_element_kind(damping):
     z = np.r_[_state(model, 2e-2, rng), 12.0]
     prob = ForcedProblem(model)
     _check_problem(lambda x: prob.fun(x)[:2], z, prob.scale(z))
+
+
+@pytest.mark.parametrize("system", ["multi_dof", "every_element"])
+def test_epmc_residual_jacobian_with_a_dof_amplitude(system):
+    """The amplitude condition on ``|w Q_1|`` of a row ``w`` (condensed modes through their
+    receptance; tanh friction's ∂Λ/∂ω in its ω derivative)."""
+    if system == "multi_dof":
+        st, elements = multi_dof(H=3)
+        w = np.sqrt(st.modal(1).w2)
+        model = CondensedHBM(st, elements, 3, 32, explicit=pole_modes(st, 3, 0.9 * w[1], 1.1 * w[1]))
+        omega, phase = 1.05 * w[1], model.slot_index(1, True, 1)
+    else:
+        st, elements = _chain_with_every_element(3)
+        model = CondensedHBM(st, elements, 3, 64, damping=structural_damping(st, 3))
+        omega, phase = 12.0, model.slot_index(1, True, 0)
+    assert any(Cs.size for Cs in model.Cset)
+    row = np.linspace(1.0, -0.5, st.harmonics[1].M.shape[0])
+    z = np.r_[_state(model, 3e-3 if system == "every_element" else 2e-5, np.random.default_rng(19)), omega, 0.7]
+    prob = EPMCProblem(model, phase_index=phase, amplitude=row)
+    _check_problem(lambda x: prob.fun(x, np.log(1e-2))[:2], z, prob.scale(z))

@@ -5,7 +5,13 @@ Oracles: the EPMC's amplitude condition ``Q_1ᴴ M Q_1 = α²`` on the DoF harmo
 point (1e-7: the Newton tolerance is 1e-8, measured 5e-9); the linear forced response's DoF
 harmonics against the receptance ``(K − ω²M + iωC)⁻¹ F`` at every point (harmonic 1, 1e-8) and
 zero elsewhere; the measures reported for another response row equal that row applied to the DoF
-harmonics (1e-12)."""
+harmonics (1e-12).
+
+The EPMC amplitude on a DoF (``epmc(..., amplitude=w)``): the same backbone as the modal one, only
+parametrised by ``|w Q_1|``: continued on the DoF amplitudes the modal backbone has at its points, it
+returns those points' ω and ξ (1e-8, Newton's tolerance) and E-EBM forcing, and ``|w Q_1|`` equals
+the grid (1e-7), through the stuck points and the slipping ones, for a DoF and a relative
+displacement."""
 import numpy as np
 import pytest
 
@@ -13,8 +19,10 @@ from ringdamper.nonlinear.eebm import eebm
 from ringdamper.nonlinear.epmc import epmc
 from ringdamper.nonlinear.frf import forced_response
 from ringdamper.nonlinear.response import time_peak
+from ringdamper.nonlinear.structure import Structure
+from ringdamper.status import Status
 
-from .test_structural_damping import FRICTION, OPEN, K, M, _natural_frequencies, _structure
+from .test_structural_damping import FRICTION, OPEN, B, E, K, M, _natural_frequencies, _structure
 
 
 def test_backbone_harmonics_satisfy_the_amplitude_condition_and_any_row_is_a_measure():
@@ -30,6 +38,28 @@ def test_backbone_harmonics_satisfy_the_amplitude_condition_and_any_row_is_a_mea
         q = np.array([relative @ Qh for Qh in Q])
         np.testing.assert_allclose(res.q_res_h1[i], abs(q[1]), rtol=1e-12)
         np.testing.assert_allclose(res.q_res_peak[i], time_peak(q), rtol=1e-12)
+
+
+@pytest.mark.parametrize("row", [np.array([0.0, 1.0]), np.array([1.0, -1.0])], ids=["dof_2", "x1_minus_x2"])
+def test_epmc_on_a_dof_amplitude_is_the_modal_backbone_reparametrised(row):
+    modal = epmc(_structure(H=3), FRICTION, np.geomspace(1e-3, 1.0, 10), H=3)
+    assert np.all(modal.status == Status.CONVERGED) and np.max(modal.zeta) > 0.01     # slipping points
+    dof_alpha = np.array([abs(row @ modal.harmonics(i)[1]) for i in range(modal.alpha.size)])
+    on_dof = epmc(_structure(H=3), FRICTION, dof_alpha, H=3, amplitude=row)
+    assert np.all(on_dof.status == Status.CONVERGED)
+    np.testing.assert_allclose(on_dof.omega, modal.omega, rtol=1e-8)
+    assert np.all(np.abs(on_dof.xi - modal.xi) <= 1e-8 * modal.omega)        # Newton: ξ scaled by ω
+    np.testing.assert_allclose([abs(row @ on_dof.harmonics(i)[1]) for i in range(dof_alpha.size)],
+                               dof_alpha, rtol=1e-7)
+    np.testing.assert_allclose(eebm(on_dof, zeta_s=1e-3).gamma, eebm(modal, zeta_s=1e-3).gamma, rtol=1e-6)
+
+
+def test_an_amplitude_row_of_the_wrong_shape_or_that_the_mode_does_not_move_is_named():
+    with pytest.raises(ValueError, match=r"amplitude: expected a row of shape \(2,\)"):
+        epmc(_structure(H=1), FRICTION, np.array([1e-3]), H=1, amplitude=np.ones(3))
+    free = Structure.real(np.eye(2), np.diag([1e4, 4e4]), B, E, E, H=1)      # mode 1 moves DoF 1 only
+    with pytest.raises(ValueError, match="amplitude: the followed mode does not move this row"):
+        epmc(free, OPEN, np.array([1e-3]), H=1, amplitude=np.array([0.0, 1.0]))
 
 
 def test_forced_response_harmonics_of_every_dof_are_the_receptance():

@@ -43,13 +43,18 @@ def rms(Q: list) -> np.ndarray:
     return np.sqrt(np.abs(Q[0]) ** 2 + 0.5 * sum(np.abs(q) ** 2 for q in Q[1:]))
 
 
+def curve():
+    """``(forced response, elements)``: 1 N from 0.5 to 2 rad/s."""
+    structure, elements = system()
+    return forced_response(structure, elements, 1.0, 0.5, 2.0, H=H, nt=NT, stability=False), elements
+
+
 def main(folder: Path = Path(".")):
     import matplotlib.pyplot as plt
 
     from ringdamper.plots import save_figure  # Agg backend
 
-    structure, elements = system()
-    frf = forced_response(structure, elements, 1.0, 0.5, 2.0, H=H, nt=NT, stability=False)
+    frf, elements = curve()
     amplitudes = np.array([rms(frf.harmonics(j)) for j in range(frf.omega.size)])
     k = np.argmax(amplitudes, axis=0)
     print(f"{frf.omega.size} points; RMS peaks q1, q2, q3: "

@@ -40,13 +40,18 @@ def fixed_and_free():
     return np.sqrt(K[1, 1] / M[1, 1]), free
 
 
+def mode():
+    """``(backbone, elements)``: the first nonlinear mode on ``ALPHA``."""
+    structure, elements = system()
+    return epmc(structure, elements, ALPHA, H=H, nt=NT), elements
+
+
 def main(folder: Path = Path(".")):
     import matplotlib.pyplot as plt
 
     from ringdamper.plots import save_figure  # Agg backend
 
-    structure, elements = system()
-    backbone = epmc(structure, elements, ALPHA, H=H, nt=NT)
+    backbone, elements = mode()
     fixed, free = fixed_and_free()
     print(f"ω/ω_fixed from {backbone.omega[0] / fixed:.4f} to {backbone.omega[-1] / fixed:.4f} "
           f"(free: {free / fixed:.4f}); largest ζ {100 * np.max(backbone.zeta):.2f} %")

@@ -208,6 +208,13 @@ def _coulomb(config: dict) -> dict:
     return run(config)
 
 
+def _library(config: dict) -> dict:
+    """NLvib's example systems 05 and 07 as docs/examples computes them (ringdamper.bench.library)."""
+    from ringdamper.bench.library import run
+
+    return run(config)
+
+
 def _surrogate(config: dict) -> dict:
     """Kriging (120 models) + 50³ grid + Sobol on synthetic data of the campaign's size."""
     from ringdamper.bench.surrogate import run
@@ -216,7 +223,8 @@ def _surrogate(config: dict) -> dict:
 
 
 BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "geometry_chain": _geometry_chain,
-              "reduction": _reduction, "dnnm": _dnnm, "coulomb": _coulomb, "dynamics_synthetic": _dynamics_synthetic,
+              "reduction": _reduction, "dnnm": _dnnm, "coulomb": _coulomb, "library": _library,
+              "dynamics_synthetic": _dynamics_synthetic,
               "static_synthetic": _static_synthetic,
               "mesh_convergence": _mesh_convergence, "surrogate": _surrogate}
 

@@ -24,19 +24,9 @@ the EPMC's negative damping balances the friction's dissipation, ``ξ ∫ q̇ᵀ
 at the smallest amplitude the mode is that of the system with m1 held, at the largest that of the free
 system (1e-3; measured 5e-6 and 2e-6; energy balance measured 1.5e-8), and the damping peaks in
 between (more than 10× either end)."""
-import importlib.util
-from pathlib import Path
-
 import numpy as np
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "docs" / "examples"
-
-
-def _example(name: str):
-    spec = importlib.util.spec_from_file_location(name, EXAMPLES / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+from ringdamper.bench.library import load_example as _example
 
 
 def test_duffing_example(tmp_path):

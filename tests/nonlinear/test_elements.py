@@ -11,8 +11,8 @@ Per element, through the AFT on ``u = a cos τ`` (H = 1):
   tangential direction (kn large, no normal motion) to 1e-13 at any state;
 * tanh friction with ``ε ≪ a ω``: Coulomb's describing function, first sine coefficient ``−4F/π`` and
   dissipation ``4 F a`` (1e-3, the regularisation's share ~ε/(aω));
-* the analytic Jacobian, and ``∂f/∂ω`` of tanh friction, against central differences (1e-6 of the
-  largest entry) at H = 3.
+* the analytic Jacobian, and ``∂f/∂ω`` and the velocity Jacobian ``∂f_c/∂v_c'`` of tanh friction,
+  against central differences (1e-6 of the largest entry) at H = 3.
 
 Systems: the Duffing oscillator's H = 1 backbone ``ω² = (k + ¾ k3 a²)/m`` (Newton tolerance: 1e-7);
 the one-DoF Jenkins oscillator with the 1-D element and with the 3-D contact, the same backbone
@@ -120,8 +120,22 @@ def test_element_jacobian_matches_finite_differences(element):
     if element.velocity_dependent:
         fd_w = (force(u, omega + h) - force(u, omega - h)) / (2 * h)
         assert np.max(np.abs(dw.ravel() - fd_w)) <= 1e-6 * np.max(np.abs(fd_w))
+        _check_velocity_jacobian(element, fourier, u, omega, h)
     else:
-        assert dw is None
+        assert dw is None and element.velocity_jacobian(fourier, u, omega) is None
+
+
+def _check_velocity_jacobian(element, fourier, u, omega, h):
+    """``∂f_c/∂v_c'`` against central differences of ``F f(E u, E v)`` in the velocity's coefficients
+    ``v`` taken apart from ``u`` (at ``v`` those of ``u̇ = ω ∂u/∂τ``)."""
+    v = fourier.analyse(omega * (u @ fourier.dE.T))
+
+    def force(x):
+        return fourier.analyse(element.force(fourier.synth(u), fourier.synth(x))[0]).ravel()
+
+    Jv = element.velocity_jacobian(fourier, u, omega).reshape(fourier.C, fourier.C)
+    fd = np.array([(force(v + h * e) - force(v - h * e)) / (2 * h) for e in np.eye(fourier.C)[:, None, :]]).T
+    assert np.max(np.abs(Jv - fd)) <= 1e-6 * np.max(np.abs(fd))
 
 
 def _one_dof(elements, H, m=2.0, k=100.0):

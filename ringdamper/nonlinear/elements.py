@@ -14,8 +14,9 @@ an element must exert no force there.
   direction; the memory before the period is the static state ``s = 0``, as for the 3-D contact);
 * :class:`TanhFriction` ``f = F_s tanh(u̇/ε)`` (dry friction regularised in velocity). Its force depends
   on the velocity ``u̇ = ω ∂u/∂τ``, hence on ω: the AFT also returns ``∂f_c/∂ω``, which the harmonic
-  balance adds to its ω column. Hill's stability of such a solution is not available (it would need
-  the velocity Jacobian apart): ``forced_response(stability=True)`` raises.
+  balance adds to its ω column, and :meth:`Element.velocity_jacobian` gives ``∂f_c/∂v_c'``, the
+  velocity's own Jacobian, which Hill's stability adds to its damping
+  (:mod:`ringdamper.nonlinear.stability`).
 
 :class:`Elements` gathers any number of them, of any kind, into the set the harmonic balance takes in
 place of the 3-D contact pairs (:class:`ringdamper.nonlinear.friction.FrictionContacts`): its ``B``
@@ -100,10 +101,17 @@ class Element(ABC):
         """Viscous damping ``(k,)`` [N s/m] of the element linearised at rest (0: none)."""
         return np.zeros(self.n_local)
 
+    def velocity_jacobian(self, fourier: Fourier, u: np.ndarray, omega: float) -> np.ndarray | None:
+        """``∂f_c/∂v_c'`` ``(k, C, k, C)`` at the coefficients ``u`` ``(k, C)`` and the frequency ``omega``,
+        ``v`` the coefficients of the velocity ``u̇`` taken apart from ``u`` (the Jacobian of :meth:`aft`
+        holds ``u̇ = ω ∂u/∂τ`` tied to ``u``); None for forces that do not depend on velocity."""
+        return None
+
 
 class _Memoryless(Element):
     """An element whose force depends on the present local displacement and velocity only: AFT with
-    ``∂f_c/∂u_c' = F diag(∂f/∂u) E + ω F diag(∂f/∂u̇) dE`` and ``∂f_c/∂ω = F (∂f/∂u̇ · dE u)``."""
+    ``∂f_c/∂u_c' = F diag(∂f/∂u) E + ω F diag(∂f/∂u̇) dE`` and ``∂f_c/∂ω = F (∂f/∂u̇ · dE u)``; velocity
+    Jacobian ``∂f_c/∂v_c' = F diag(∂f/∂u̇) E``."""
 
     @abstractmethod
     def force(self, u: np.ndarray, v: np.ndarray):
@@ -111,19 +119,36 @@ class _Memoryless(Element):
         for an element that does not depend on velocity), and its derivatives ``(k, k, Nt)`` with
         respect to ``u`` and to ``v`` (None: no velocity dependence)."""
 
-    def aft(self, fourier, u, jacobian, omega=None):
+    def _sampled(self, fourier, u, omega):
+        """:meth:`force` and its derivatives at the samples of ``u`` and of ``u̇ = ω ∂u/∂τ``, and
+        ``∂u/∂τ`` there (None for an element that does not depend on velocity)."""
         if self.velocity_dependent and omega is None:
             raise ValueError(f"{type(self).__name__}: the force depends on velocity, the AFT needs omega")
         rate = u @ fourier.dE.T if self.velocity_dependent else None      # ∂u/∂τ at the samples
-        f, df_du, df_dv = self.force(fourier.synth(u), None if rate is None else omega * rate)
+        return self.force(fourier.synth(u), None if rate is None else omega * rate), rate
+
+    def aft(self, fourier, u, jacobian, omega=None):
+        (f, df_du, df_dv), rate = self._sampled(fourier, u, omega)
         lam = fourier.analyse(f)
         if not jacobian:
             return lam, None, None
-        jac = np.einsum("ct,ijt,td->icjd", fourier.F, df_du, fourier.E)
+        jac = _projected(fourier, df_du, fourier.E)
         if df_dv is None:
             return lam, jac, None
-        jac += omega * np.einsum("ct,ijt,td->icjd", fourier.F, df_dv, fourier.dE)
+        jac += omega * _projected(fourier, df_dv, fourier.dE)
         return lam, jac, fourier.analyse(np.einsum("ijt,jt->it", df_dv, rate))
+
+    def velocity_jacobian(self, fourier, u, omega):
+        if not self.velocity_dependent:
+            return None
+        (_, _, df_dv), _ = self._sampled(fourier, u, omega)
+        return _projected(fourier, df_dv, fourier.E)
+
+
+def _projected(fourier: Fourier, df: np.ndarray, basis: np.ndarray) -> np.ndarray:
+    """``F diag(df) basis`` ``(k, C, k, C)`` of the sampled derivatives ``df`` ``(k, k, Nt)``: the
+    coefficients of ``df · x`` for the samples ``x = basis c`` (``basis`` ``E`` or ``dE``)."""
+    return np.einsum("ct,ijt,td->icjd", fourier.F, df, basis)
 
 
 class CubicSpring(_Memoryless):
@@ -255,22 +280,28 @@ class Elements:
         """Forces ``lam`` ``(npairs, 3, C)`` of the local coordinates' coefficients ``d``
         ``(npairs, 3, C)`` at the frequency ``omega``, (``jacobian``) their Jacobian
         ``(npairs, 3, C, 3, C)`` (``"dc"``: its columns of the mean values only) and, if some element
-        depends on velocity, ``dlam_domega``. ``memory`` is not used: every hysteretic element starts
+        depends on velocity, ``dlam_domega`` and (full Jacobian) ``jac_velocity``
+        (:meth:`Element.velocity_jacobian`). ``memory`` is not used: every hysteretic element starts
         from the static state."""
         npairs, _, C = d.shape
         lam = np.zeros((npairs, 3, C))
         jac = np.zeros((npairs, 3, C, 3, C)) if jacobian else None
         dlam_domega = np.zeros((npairs, 3, C)) if jacobian and self.velocity_dependent else None
+        jac_velocity = np.zeros_like(jac) if dlam_domega is not None and jacobian != "dc" else None
         for i, e in enumerate(self.elements):
-            f, df, df_dw = e.aft(fourier, d[i, :e.n_local], bool(jacobian), omega)
-            lam[i, :e.n_local] = f
+            k = e.n_local
+            f, df, df_dw = e.aft(fourier, d[i, :k], bool(jacobian), omega)
+            lam[i, :k] = f
             if jacobian:
-                jac[i, :e.n_local, :, :e.n_local] = df
+                jac[i, :k, :, :k] = df
             if df_dw is not None:
-                dlam_domega[i, :e.n_local] = df_dw
+                dlam_domega[i, :k] = df_dw
+            if jac_velocity is not None and e.velocity_dependent:
+                jac_velocity[i, :k, :, :k] = e.velocity_jacobian(fourier, d[i, :k], omega)
         if jacobian == "dc":
             jac = jac[..., :1]
-        return ContactAFT(lam=lam, jac=jac, normal=None, tangential=None, memory=None, dlam_domega=dlam_domega)
+        return ContactAFT(lam=lam, jac=jac, normal=None, tangential=None, memory=None, dlam_domega=dlam_domega,
+                          jac_velocity=jac_velocity)
 
     def energy(self, d: np.ndarray, lam: np.ndarray) -> np.ndarray:
         """Energy each element dissipates per cycle [J], ``∮ f · du`` of its local coordinates ``d`` and

@@ -117,9 +117,6 @@ def forced_response(structure: Structure, contacts: FrictionContacts | Elements,
     explicit = pole_modes(structure, H, lo * (1 - pole_band), hi * (1 + pole_band)) \
         if pole_band > 0 else None
     contacts = contacts.for_pairs(structure.npairs)
-    if stability and contacts.velocity_dependent:
-        raise ValueError("stability: Hill's stability is not available for forces that depend on velocity "
-                         "(TanhFriction); call forced_response(..., stability=False)")
     damping = structural_damping(structure, H, zeta_s)
     model = CondensedHBM(structure, contacts, H, nt, explicit=explicit, damping=damping,
                          forced=True, gamma=gamma)

@@ -157,7 +157,9 @@ class ContactAFT:
     """AFT result for all pairs: force coefficients ``lam`` ``(npairs, 3, C)``, their Jacobian
     ``jac[q, i, c, j, c'] = ∂lam[q, i, c] / ∂d[q, j, c']`` (or None), the time signals, the
     periodic slider state at the period start ``memory`` ``(npairs, 2)`` and, for forces that depend
-    on velocity, ``dlam_domega`` ``∂lam/∂ω`` (None: they do not)."""
+    on velocity, ``dlam_domega`` ``∂lam/∂ω`` and (with the full Jacobian) the velocity Jacobian
+    ``jac_velocity[q, i, c, j, c'] = ∂lam[q, i, c] / ∂v[q, j, c']``, ``v`` the coefficients of the
+    relative velocity taken apart from ``d`` (None: they do not depend on velocity)."""
 
     lam: np.ndarray
     jac: np.ndarray | None
@@ -165,6 +167,7 @@ class ContactAFT:
     tangential: np.ndarray
     memory: np.ndarray
     dlam_domega: np.ndarray | None = None
+    jac_velocity: np.ndarray | None = None
 
 
 def contact_aft(contacts: FrictionContacts, fourier: Fourier, d: np.ndarray,

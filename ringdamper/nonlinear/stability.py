@@ -18,6 +18,18 @@ kept are those in the fundamental strip ``|Im λ| ≤ ω/2`` (Moore 2005, *Int. 
 exponent has ``Re λ ≤ tol·ω`` (the tolerance absorbs the neutral exponents of undamped or free
 rigid-body directions).
 
+Forces that depend on velocity (:class:`ringdamper.nonlinear.elements.TanhFriction`). The contact
+force of the perturbation is ``δΛ = K_d(t) δd + K_v(t) δḋ`` with ``δḋ = e^{λt}(λ p_d + ṗ_d)``. The
+AFT Jacobian ``K_c`` of the harmonic balance linearises along periodic perturbations, whose velocity
+is ``ω ∂d/∂τ``: it holds ``K_d p_d + K_v ṗ_d``. The rest, ``λ K_v p_d``, is a damping: with the
+velocity Jacobian ``K_v = F diag(∂f/∂ḋ) E`` on the contact slots (the AFT of the samples of
+``∂f/∂ḋ(t)``, :attr:`ringdamper.nonlinear.friction.ContactAFT.jac_velocity`, a real operator on
+``(a; b)`` slots like ``K_c``) the pencil becomes
+
+    (λ² I + λ (Δ₁ + Pᵀ K_v P) + J) v = 0,
+
+``P`` the map from the modal slots to the contact slots, the one through which ``K_c`` enters ``J``.
+
 Large models (a real ring keeps hundreds of modes per harmonic) are reduced first: the modes with
 ``ω_r > (H + band)·ω`` lie above every retained harmonic, their exponents far outside the strip,
 so they are condensed onto the contact at ``λ = 0`` with their exact receptance ``1/z_r`` (a
@@ -25,7 +37,17 @@ residual flexibility ``G``, positive because ``ω_r > hω``, as in the condensed
 the contact stiffness the kept modes see is then ``K_eff = (I + K_c G)⁻¹ K_c``. (Condensing modes
 *below* a harmonic as well would add negative flexibility and spurious real exponents.) A damping
 that couples the modes (``C_off``, :mod:`ringdamper.nonlinear.structure`) keeps every mode of its
-harmonic: ``Z_h`` and ``Δ₁`` take ``+ i h ω C_off`` and ``+ C_off``.
+harmonic: ``Z_h`` and ``Δ₁`` take ``+ i h ω C_off`` and ``+ C_off``. With forces
+that depend on velocity the force through the condensed modes, ``δΛ = (I + (K_c + λK_v) G)⁻¹
+(K_c + λK_v) P η``, is rational in ``λ``; the pencil takes its expansion to first order at ``λ = 0``,
+the point the condensed modes are taken at:
+
+    Δ₁ + Pᵀ K_v,eff P,     K_v,eff = (I + K_c G)⁻¹ K_v (I + G K_c)⁻¹,
+
+the velocity force of the contact displacement the condensed modes let through, ``(I + G K_c)⁻¹ P η``,
+passed back through them. The terms left out are ``O(|λ| ‖G K_v‖)`` relative to it, the order of
+the condensed modes' own ``λ`` terms left out (``O(|λ| hω/ω_r²)``); with no mode condensed
+(``band = inf``) the pencil is exact.
 
 Gauged rigid-body directions. Where the condensed HBM holds a free rigid-body direction of the ring
 by its gauge (:mod:`ringdamper.nonlinear.condensed`: the mean position pinned, the unbalanced mean
@@ -33,7 +55,11 @@ force reported as drift), the solution is one of the held system, and so is its 
 directions are removed from the Hill problem. Otherwise their mean position, whose net contact
 stiffness can be slightly negative there, contributes a small real exponent (≈ 0.02 1/s at
 5.8e3 rad/s on the default ring) that states the drift already reported, not an instability of the
-vibration.
+vibration. The held system has no mean motion along those directions, so they leave ``Δ₁`` as they
+leave ``J`` (``Qᵀ J Q``, ``Qᵀ Δ₁ Q`` with ``Q`` a basis of the rest): with forces that depend on
+velocity, the decay rate of the free body's mean velocity, which its damping by those forces gives it,
+is not among the exponents either.
+
 The linearisation of the hysteretic contact force by its AFT
 Jacobian is the usual approximation of Hill's method for friction (Krack & Gross 2019, *Harmonic
 Balance for Nonlinear Vibration Problems*, §5).
@@ -69,14 +95,35 @@ def modal_hill_matrices(model, ev, omega: float, band: float = BAND):
     """``J`` and ``Δ₁`` of a forced condensed-HBM solution (:class:`~ringdamper.nonlinear.condensed.
     CondensedHBM`, evaluation ``ev`` with its full AFT Jacobian) on the modes kept explicit
     (``ω_r ≤ (H + band)·ω``), slots ``[η_0 | a_1, b_1 | … | a_H, b_H]`` (``η_h = a_h − i b_h``):
-    ``J = ⊕_h real(diag(z_h)) + Pᵀ K_eff P`` with ``P = ⊕_h real(Ψ_h)`` onto the contact slots and
-    ``K_eff`` the contact AFT Jacobian seen through the condensed modes, without the directions
-    the gauge holds (module docstring)."""
+    ``J = ⊕_h real(diag(z_h)) + Pᵀ K_eff P`` and ``Δ₁ = ⊕_h real(diag(c_r + 2ihω)) + Pᵀ K_v,eff P``
+    (the second term only for forces that depend on velocity) with ``P = ⊕_h real(Ψ_h)`` onto the
+    contact slots and ``K_eff``, ``K_v,eff`` the contact's AFT and velocity Jacobians seen through the
+    condensed modes, without the directions the gauge holds (module docstring)."""
     if ev.aft.jac is None or ev.aft.jac.shape[-1] != model.C:
         raise ValueError("the evaluation must carry the full contact Jacobian (jacobian=True)")
-    if ev.aft.dlam_domega is not None:
-        raise ValueError("Hill's stability is not available for forces that depend on velocity "
-                         "(TanhFriction): compute the forced response with stability=False")
+    if ev.aft.dlam_domega is not None and ev.aft.jac_velocity is None:
+        raise ValueError("forces that depend on velocity must give their velocity Jacobian "
+                         "(ContactAFT.jac_velocity)")
+    Z, D1, Pfull, G, kept0 = _modal_blocks(model, omega, band)
+    Kc = _contact_matrix(ev.aft.jac, model.p)
+    KP = Kc @ Pfull
+    if np.any(G):
+        KP = np.linalg.solve(np.eye(model.n_d) + (Kc @ G), KP)
+    J, D = Z + Pfull.T @ KP, D1
+    if ev.aft.jac_velocity is not None:
+        D = D + Pfull.T @ _velocity_force(_contact_matrix(ev.aft.jac_velocity, model.p), Kc, G, Pfull)
+    if ev.gauge.shape[1]:                           # hold the gauged rigid-body directions
+        Q = _held_space(model, ev.gauge, kept0, J.shape[0])
+        J, D = Q.T @ J @ Q, Q.T @ D @ Q
+    return J, D
+
+
+def _modal_blocks(model, omega: float, band: float):
+    """Linear parts of the Hill pencil on the modes kept explicit (``ω_r ≤ (H + band)·ω``, every
+    mode of a harmonic whose damping couples them): ``⊕_h real(diag(z_h))``,
+    ``⊕_h real(diag(c_r + 2ihω))`` (plus the coupling), the map ``P = ⊕_h real(Ψ_h)`` from their
+    slots to the contact slots, the residual flexibility ``G = ⊕_h real(Ψ_h,c diag(1/z_c) Ψ_h,cᴴ)``
+    of the condensed ones, and the indices of the modes of harmonic 0 kept."""
     Z, D1, P, kept = [], [], [], []
     G = np.zeros((model.n_d, model.n_d))
     for h, m in enumerate(model.modal):
@@ -108,18 +155,26 @@ def modal_hill_matrices(model, ev, omega: float, band: float = BAND):
     for rows, b in P:
         Pfull[rows, col:col + b.shape[1]] = b
         col += b.shape[1]
-    Kc = _contact_matrix(ev.aft.jac, model.p)
-    KP = Kc @ Pfull
-    if np.any(G):
-        KP = np.linalg.solve(np.eye(model.n_d) + (Kc @ G), KP)
-    J, D = sla.block_diag(*Z) + Pfull.T @ KP, sla.block_diag(*D1)
-    if ev.gauge.shape[1]:                           # hold the gauged rigid-body directions
-        rigid = model.S[0][model.zero_modes]
-        E = np.zeros((J.shape[0], ev.gauge.shape[1]))
-        E[np.searchsorted(kept[0], rigid)] = ev.gauge
-        Q = sla.null_space(E.T)
-        J, D = Q.T @ J @ Q, Q.T @ D @ Q
-    return J, D
+    return sla.block_diag(*Z), sla.block_diag(*D1), Pfull, G, kept[0]
+
+
+def _velocity_force(Kv, Kc, G: np.ndarray, P: np.ndarray) -> np.ndarray:
+    """``K_v,eff P = (I + K_c G)⁻¹ K_v (I + G K_c)⁻¹ P``: the contact force per unit ``λ`` of the
+    velocity Jacobian ``K_v``, to first order in ``λ`` through the modes condensed at ``λ = 0``
+    (module docstring); ``K_v P`` when none is condensed."""
+    if not np.any(G):
+        return Kv @ P
+    eye = np.eye(G.shape[0])
+    return np.linalg.solve(eye + Kc @ G, Kv @ np.linalg.solve(eye + G @ Kc, P))
+
+
+def _held_space(model, gauge: np.ndarray, kept0: np.ndarray, n: int) -> np.ndarray:
+    """Orthonormal basis of the ``n`` explicit modal slots orthogonal to the gauged rigid-body
+    directions ``gauge`` (columns in the zero-mode space of harmonic 0, whose kept modes ``kept0``
+    have the first slots)."""
+    E = np.zeros((n, gauge.shape[1]))
+    E[np.searchsorted(kept0, model.S[0][model.zero_modes])] = gauge
+    return sla.null_space(E.T)
 
 
 def _contact_matrix(jac: np.ndarray, p: int) -> sparse.csr_array:

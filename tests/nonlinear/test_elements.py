@@ -11,13 +11,14 @@ Per element, through the AFT on ``u = a cos τ`` (H = 1):
   tangential direction (kn large, no normal motion) to 1e-13 at any state;
 * tanh friction with ``ε ≪ a ω``: Coulomb's describing function, first sine coefficient ``−4F/π`` and
   dissipation ``4 F a`` (1e-3, the regularisation's share ~ε/(aω));
-* the analytic Jacobian, and ``∂f/∂ω`` of tanh friction, against central differences (1e-6 of the
-  largest entry) at H = 3.
+* the analytic Jacobian, and ``∂f/∂ω`` and the velocity Jacobian ``∂f_c/∂v_c'`` of tanh friction,
+  against central differences (1e-6 of the largest entry) at H = 3.
 
 Systems: the Duffing oscillator's H = 1 backbone ``ω² = (k + ¾ k3 a²)/m`` (Newton tolerance: 1e-7);
 the one-DoF Jenkins oscillator with the 1-D element and with the 3-D contact, the same backbone
 (ω 1e-12, ζ 1e-14); a mass on a spring with tanh friction at H = 1 and ε ≪ aω: the frequency stays
-``√(k/m)`` (1e-12) and ζ is Coulomb's describing function ``2F/(π m a ω²)`` (1e-4, measured 3e-6);
+``√(k/m)`` (1e-12) and ζ is Coulomb's describing function ``2F/(π m a ω²)`` (1e-4, measured 3e-6), and
+forced at small amplitude its Hill exponent is the slow decay of the damper ``F/ε`` at rest (1e-6);
 two cubic springs on one coordinate equal to one with the summed k3 (1e-10 at
 Newton tolerance 1e-12: the two problems have different unknowns, so Newton stops at other iterates).
 """
@@ -120,8 +121,22 @@ def test_element_jacobian_matches_finite_differences(element):
     if element.velocity_dependent:
         fd_w = (force(u, omega + h) - force(u, omega - h)) / (2 * h)
         assert np.max(np.abs(dw.ravel() - fd_w)) <= 1e-6 * np.max(np.abs(fd_w))
+        _check_velocity_jacobian(element, fourier, u, omega, h)
     else:
-        assert dw is None
+        assert dw is None and element.velocity_jacobian(fourier, u, omega) is None
+
+
+def _check_velocity_jacobian(element, fourier, u, omega, h):
+    """``∂f_c/∂v_c'`` against central differences of ``F f(E u, E v)`` in the velocity's coefficients
+    ``v`` taken apart from ``u`` (at ``v`` those of ``u̇ = ω ∂u/∂τ``)."""
+    v = fourier.analyse(omega * (u @ fourier.dE.T))
+
+    def force(x):
+        return fourier.analyse(element.force(fourier.synth(u), fourier.synth(x))[0]).ravel()
+
+    Jv = element.velocity_jacobian(fourier, u, omega).reshape(fourier.C, fourier.C)
+    fd = np.array([(force(v + h * e) - force(v - h * e)) / (2 * h) for e in np.eye(fourier.C)[:, None, :]]).T
+    assert np.max(np.abs(Jv - fd)) <= 1e-6 * np.max(np.abs(fd))
 
 
 def _one_dof(elements, H, m=2.0, k=100.0):
@@ -149,8 +164,18 @@ def test_tanh_friction_backbone_at_h1_is_coulombs_describing_function():
     a = alpha / np.sqrt(m)
     np.testing.assert_allclose(bb.omega, w0, rtol=1e-12)
     np.testing.assert_allclose(bb.zeta, 2 * FS / (np.pi * m * a * w0 ** 2), rtol=1e-4)
-    with pytest.raises(ValueError, match="Hill's stability is not available for forces that depend on velocity"):
-        forced_response(_one_dof(elements, 1, m, k), elements, 1.0, 0.9 * w0, 1.1 * w0, H=1, nt=64)
+
+
+def test_tanh_friction_forced_at_small_amplitude_decays_as_its_damper():
+    """|u̇| ≈ 3e-4 ε: the friction is the damper c = F_s/ε = 3e4 N s/m, the oscillator overdamped; Hill's
+    largest exponent is the slow root of m λ² + c λ + k (1e-6; measured 6e-8, the tanh’s cubic term)."""
+    m, k = 2.0, 100.0
+    elements = Elements([TanhFriction([1.0], FS, eps=1e-4)], 1)
+    w0 = np.sqrt(k / m)
+    frf = forced_response(_one_dof(elements, 1, m, k), elements, 1e-3, 0.9 * w0, 1.1 * w0, H=1, nt=64)
+    assert frf.status == Status.CONVERGED and frf.stable.all()
+    c = FS / 1e-4
+    np.testing.assert_allclose(frf.growth, (-c + np.sqrt(c * c - 4 * m * k)) / (2 * m), rtol=1e-6)
 
 
 def test_jenkins_element_and_contact_give_the_same_backbone():

@@ -33,7 +33,9 @@ initial and maximum steps). A corrector is a failure once it has used
 cheaper than a long Newton far from the branch). ``jump_mask`` restricts the geometry to the unknowns that identify
 the branch (the EPMC leaves out the mean values, which move freely where the last contact
 holding a rigid-body motion lets go). Failures never raise: they end the run with a status
-(:class:`ringdamper.status.Status`).
+(:class:`ringdamper.status.Status`). A natural step that ends between two grid values may stop its
+corrector earlier (:attr:`StepControl.between`): such a point carries only the predictor and the
+next step's geometry; every grid value is solved to the run's tolerance.
 """
 from __future__ import annotations
 
@@ -52,12 +54,18 @@ from ringdamper.status import Status
 # drift and the geometry tests, which look at the other unknowns, see noise.
 FREE_WEIGHT = 0.3
 
+#: largest angle [rad] by which the corrector's error at a point between grid values may tilt the
+#: chord of its step (:meth:`StepControl.corrector_tolerance`)
+BETWEEN_PER_STEP = 1e-3
+
 
 @dataclass
 class StepControl:
     """Step-size rules (in the continuation parameter or arc length). ``turn`` [rad]: nominal
     angle between the tangents of successive points (the step follows the curvature); a step
-    whose tangent turns by more than twice that is rejected and halved (module docstring)."""
+    whose tangent turns by more than twice that is rejected and halved (module docstring).
+    ``between``: looser corrector tolerance of the natural steps that end between grid values
+    (:meth:`corrector_tolerance`; None: the run's tolerance everywhere)."""
 
     initial: float
     minimum: float
@@ -67,6 +75,7 @@ class StepControl:
     hard: float = 4.0        # effort above which ds shrinks
     turn: float = 0.1
     corrector: int | None = None  # fresh Jacobians of a corrector before its step is rejected (None: max_iter)
+    between: float | None = None  # corrector tolerance between grid values (None: the run's tol)
 
     def __post_init__(self):
         if not 0 < self.minimum <= self.initial:
@@ -79,6 +88,16 @@ class StepControl:
             raise ValueError(f"StepControl: turn must lie in (0, pi/4) rad, got {self.turn}")
         if self.corrector is not None and self.corrector < 1:
             raise ValueError(f"StepControl: corrector must be >= 1 fresh Jacobians, got {self.corrector}")
+
+    def corrector_tolerance(self, tol: float, ds: float, on_grid: bool) -> float:
+        """Newton tolerance of a natural step of size ``ds``: ``tol`` on a grid value; between grid
+        values, where a point only carries the predictor and the step's geometry, up to
+        :attr:`between`, and at most ``BETWEEN_PER_STEP·ds`` so that the corrector's error tilts
+        the chord by no more than that angle [rad] (``|δu| ≤ tol``, chord ``≥ ds``; the geometry
+        tests work at 0.1–0.2 rad)."""
+        if on_grid or self.between is None:
+            return tol
+        return max(tol, min(self.between, BETWEEN_PER_STEP * ds))
 
     def corrector_iterations(self, max_iter: int) -> int:
         """Fresh Jacobians a predictor–corrector step may use: :attr:`corrector`, at most ``max_iter``."""
@@ -202,8 +221,8 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
         on_grid = s_t >= grid[gi] - 1e-12 * max(1.0, abs(grid[gi]))
         s_t = grid[gi] if on_grid else s_t
         z_pred = z + (s_t - s) * tangent
-        res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale, tol, corrector,
-                     factorization=fac)
+        res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale,
+                     steps.corrector_tolerance(tol, s_t - s, on_grid), corrector, factorization=fac)
         why = res.reason
         if res.converged:
             fac_t, tangent_t = _natural_tangent(fun, dfun_ds, res.z, s_t, res.factorization, scale)

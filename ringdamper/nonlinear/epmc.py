@@ -161,10 +161,15 @@ class EPMCProblem:
 CORRECTOR_JACOBIANS = 6
 
 
+#: corrector tolerance of the continuation points between grid values (:meth:`StepControl.corrector_tolerance`)
+BETWEEN_TOL = 1e-5
+
+
 def default_steps() -> StepControl:
     """Step control of the EPMC in ``log α``: initial 0.2, minimum 1e-4, maximum 0.5, correctors failed
     after :data:`CORRECTOR_JACOBIANS` fresh Jacobians."""
-    return StepControl(initial=0.2, minimum=1e-4, maximum=0.5, corrector=CORRECTOR_JACOBIANS)
+    return StepControl(initial=0.2, minimum=1e-4, maximum=0.5, corrector=CORRECTOR_JACOBIANS,
+                       between=BETWEEN_TOL)
 
 
 def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, H: int = 1,

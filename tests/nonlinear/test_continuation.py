@@ -86,6 +86,30 @@ def test_backbone_does_not_depend_on_the_continuation_path():
     assert np.max(a.zeta) > 1e-2                                    # friction did act
 
 
+def test_points_between_grid_values_converged_loosely_leave_the_grid_points_unchanged():
+    """Points between grid values only carry the predictor and the step geometry: with their
+    corrector stopped at 1e-5 (and at 1e-3 of the step) instead of the run's 1e-11, every grid point
+    is the same solution to the solver tolerance, through stick, microslip and gross slip; a grid
+    point itself is always converged to the run's tolerance."""
+    from ringdamper.nonlinear.continuation import StepControl
+
+    tight = StepControl(initial=0.05, minimum=1e-5, maximum=0.1)
+    loose = StepControl(initial=0.05, minimum=1e-5, maximum=0.1, between=1e-5)
+    assert loose.corrector_tolerance(1e-11, 0.05, on_grid=True) == 1e-11
+    assert loose.corrector_tolerance(1e-11, 0.05, on_grid=False) == 1e-5
+    assert loose.corrector_tolerance(1e-11, 1e-4, on_grid=False) == pytest.approx(1e-7)
+    assert tight.corrector_tolerance(1e-11, 0.05, on_grid=False) == 1e-11
+    st, c = multi_dof(H=3)
+    _, phi = st.stuck_modes(c.stuck_stiffness().ravel())
+    alpha = linear_limit(st, c, phi[:, 2]) * np.logspace(-0.5, 1.5, 5)
+    a, b = (epmc(st, c, alpha, H=3, nt=64, tol=1e-11, mode=2, steps=steps) for steps in (tight, loose))
+    assert np.all(a.status == Status.CONVERGED) and np.all(b.status == Status.CONVERGED)
+    assert len(b.branch) > 2 * alpha.size                          # points between the grid values
+    assert np.max(a.zeta) > 1e-2                                    # friction did act
+    np.testing.assert_allclose(b.omega, a.omega, rtol=1e-10)
+    assert np.all(np.abs(b.xi - a.xi) <= 1e-10 * a.omega)
+
+
 def test_arc_points_past_a_fold_are_bounded():
     """The fold of the free body below needs the arc-length part (``bb.branch`` folds back); allowed
     fewer arc-length points than it takes to reach every grid value, the continuation stops there, says

@@ -158,6 +158,10 @@ class _Segment:
         dpsi = h[0] * dz[0] + h[1] * dz[1] + self.kappa * self.T * self.rest / self.rs
         return np.where(self.sep, 0.0, np.where(self.slip, self.u + self.uperp * dpsi, dz))
 
+    def partials(self):
+        """``∂Φ/∂w``, ``∂Φ/∂c_k``, ``∂Φ/∂r``."""
+        return self.d_w(), self.d_cur(), self.d_r()
+
     def _r_dpsi_dz(self):
         """``r ∂ψ/∂z = 2 (T e + a √(r² − q²) ν) / (1 + T²)``."""
         return self.kappa * (self.T * self.e + self.a * self.root * self.nu)
@@ -193,9 +197,9 @@ def _newton_trajectory(c, r, guess, scale, tol):
         ok[todo[done]] = True
         if done.all():
             break
-        delta, unique = cyclic_affine(step.d_w()[..., ~done], -R[..., ~done, None])
+        delta, unique = cyclic_affine(step.d_w()[..., ~done], -R[:, :, None, ~done])
         todo = todo[~done]
-        W[..., todo[unique]] += delta[..., unique, 0]
+        W[..., todo[unique]] += delta[:, :, 0, unique]
         neutral[todo[~unique]] = True
         todo = todo[unique]
     return W, ok, neutral
@@ -205,55 +209,60 @@ def _trajectory_derivative(rate, E, c, W, r, closed, jacobian=True):
     """``∂W/∂c`` ``(n, 2, Nt, 3C)`` at the periodic trajectories ``W`` ``(2, Nt, n)`` (``c`` the same;
     ``r``, ``closed`` ``(Nt, n)``) by the implicit function theorem (module docstring; None without
     ``jacobian``), and which pairs have a unique orbit (non-singular periodicity matrix: without
-    ``jacobian`` only that, from ``∂Φ/∂w`` alone). With ``∂Φ/∂c_{k−1} = I − A_k − ∂Φ/∂c_k`` the
-    right-hand side of the tangential coefficients is ``(I − A_k) E_{k−1} + ∂Φ/∂c_k (E_k − E_{k−1})``."""
+    ``jacobian`` only that, from ``∂Φ/∂w`` alone)."""
     _, nt, n = c.shape
-    C = E.shape[1]
-    step = _Segment(np.roll(W, 1, axis=1), np.roll(c, 1, axis=1), c, r)
-    A = step.d_w()
+    before = np.roll(W, 1, axis=1), np.roll(c, 1, axis=1)
     if not jacobian:
-        return None, cyclic_affine(A, np.zeros((2, nt, n, 1)))[1]
-    before = np.roll(E, 1, axis=0)[:, None, None, :]
-    G = np.empty((2, nt, n, 3, C))
-    np.multiply((step.d_r() * (rate * closed))[..., None], E[:, None, :], out=G[..., 0, :])
-    np.multiply(step.d_cur().transpose(0, 2, 3, 1)[..., None], E[:, None, None, :] - before, out=G[..., 1:, :])
-    G[..., 1:, :] += (np.eye(2)[:, :, None, None] - A).transpose(0, 2, 3, 1)[..., None] * before
-    dW, unique = cyclic_affine(A, G.reshape(2, nt, n, 3 * C))
-    return dW.transpose(2, 0, 1, 3), unique
+        return None, cyclic_affine(_Segment(*before, c, r).d_w(), np.zeros((2, nt, 1, n)))[1]
+    A, cur, radius = _Segment(*before, c, r).partials()
+    dW, unique = cyclic_affine(A, _right_hand_sides(A, cur, radius * (rate * closed), E))
+    return dW.transpose(3, 0, 1, 2), unique
+
+
+def _right_hand_sides(A, cur, normal, E):
+    """Right-hand sides ``(2, Nt, 3C, n)`` of ``∂W/∂c`` from the partials ``A_k = ∂Φ_k/∂w``,
+    ``∂Φ_k/∂c_k`` and ``∂Φ_k/∂d_n = ∂Φ_k/∂r ∂r_k/∂d_n`` (``normal``): ``∂Φ_k/∂d_n E_k`` for the normal
+    coefficients and, with ``∂Φ/∂c_{k−1} = I − A_k − ∂Φ/∂c_k``, ``(I − A_k) E_{k−1} + ∂Φ_k/∂c_k
+    (E_k − E_{k−1})`` for the tangential ones."""
+    nt, C = E.shape
+    rest = np.eye(2)[:, :, None, None] - A
+    before = np.roll(E, 1, axis=0)[:, :, None]
+    G = np.empty((2, nt, 3, C, A.shape[-1]))
+    np.multiply(normal[:, :, None], E[:, :, None], out=G[:, :, 0])
+    for j in range(2):
+        np.multiply(cur[:, j, :, None], E[:, :, None] - before, out=G[:, :, 1 + j])
+        G[:, :, 1 + j] += rest[:, j, :, None] * before
+    return G.reshape(2, nt, 3 * C, -1)
 
 
 def cyclic_affine(A: np.ndarray, b: np.ndarray):
     """Solution of ``x_k = A_k x_{k−1} + b_k``, ``k = 0..Nt−1``, ``x_{−1} = x_{Nt−1}``, for every pair:
-    ``A`` ``(2, 2, Nt, n)``, ``b`` ``(2, Nt, n, m)`` (overwritten by ``x`` when contiguous). A two-level
+    ``A`` ``(2, 2, Nt, n)``, ``b`` ``(2, Nt, m, n)`` (overwritten by ``x`` when contiguous). A two-level
     scan: the samples in blocks (:func:`_block_size`), each block's prefix compositions
     ``x_k = P_k x_s + q_k`` from its start ``x_s`` sample after sample (vectorised over blocks and
     pairs), the blocks composed one after the other, ``(I − P) x_{−1} = q`` for the whole period, then
     every block's start and its samples. Written out elementwise (:func:`_times`): batched ``matmul``
-    on 2 × 2 blocks costs ten times more. Returns ``x`` ``(2, Nt, n, m)`` and which pairs have
+    on 2 × 2 blocks costs ten times more. Returns ``x`` ``(2, Nt, m, n)`` and which pairs have
     ``|det(I − P)| > SINGULAR`` (elsewhere ``x`` is meaningless)."""
     _, _, nt, n = A.shape
-    m = b.shape[-1]
+    m = b.shape[2]
     size = _block_size(nt)
     blocks = nt // size
-    A = A.reshape(2, 2, blocks, size, n)
-    q = b.reshape(2, blocks, size, n, m)
-    P = A.copy()
+    P = A.transpose(0, 2, 1, 3).copy().reshape(2, blocks, size, 2, n)  # rows, blocks, samples, columns
+    q = b.reshape(2, blocks, size, m, n)
     for j in range(1, size):
-        P[:, :, :, j] = _times(A[:, :, None, :, j], P[:, :, :, j - 1])
-        q[:, :, j] += _times(A[:, :, :, j, :, None], q[:, :, j - 1])
-    ends_P, ends_q = P[:, :, :, -1, :, None], q[:, :, -1]
-    period_P, period_q = ends_P[:, :, 0, ..., 0], ends_q[:, 0]
+        q[:, :, j] += _times(P[:, :, j], q[:, :, j - 1])
+        P[:, :, j] = _times(P[:, :, j], P[:, :, j - 1])
+    through_P, through_q = P[:, :, -1].copy(), q[:, :, -1].copy()      # period's start → each block's end
     for k in range(1, blocks):
-        period_P = _times(ends_P[:, :, None, k, :, 0], period_P)
-        period_q = _times(ends_P[:, :, k], period_q) + ends_q[:, k]
-    start, unique = _periodic_start(period_P, period_q)
-    starts = [start]
-    for k in range(blocks - 1):
-        starts.append(_times(ends_P[:, :, k], starts[-1]) + ends_q[:, k])
-    starts = np.stack(starts, axis=1)
+        through_q[:, k] += _times(through_P[:, k], through_q[:, k - 1])
+        through_P[:, k] = _times(through_P[:, k], through_P[:, k - 1])
+    start, unique = _periodic_start(through_P[:, -1], through_q[:, -1])
+    starts = np.concatenate([start[:, None], _times(through_P[:, :-1], start[:, None]) + through_q[:, :-1]],
+                            axis=1)
     for j in range(size):
-        q[:, :, j] += _times(P[:, :, :, j, :, None], starts)
-    return q.reshape(2, nt, n, m), unique
+        q[:, :, j] += _times(P[:, :, j], starts)
+    return q.reshape(2, nt, m, n), unique
 
 
 def _block_size(nt):
@@ -263,19 +272,19 @@ def _block_size(nt):
 
 
 def _periodic_start(P, q):
-    """``x = (I − P)⁻¹ q`` for ``P`` ``(2, 2, n)``, ``q`` ``(2, n, m)`` (2 × 2 adjugate), and where
+    """``x = (I − P)⁻¹ q`` for ``P`` ``(2, 2, n)``, ``q`` ``(2, m, n)`` (2 × 2 adjugate), and where
     ``|det(I − P)| > SINGULAR``."""
     I_P = np.eye(2)[:, :, None] - P
     det = I_P[0, 0] * I_P[1, 1] - I_P[0, 1] * I_P[1, 0]
     unique = np.abs(det) > SINGULAR
     inverse = np.array([[I_P[1, 1], -I_P[0, 1]], [-I_P[1, 0], I_P[0, 0]]]) / np.where(unique, det, 1.0)
-    return _times(inverse[..., None], q), unique
+    return _times(inverse, q), unique
 
 
 def _times(A, B):
-    """``A @ B`` for a 2 × 2 ``A`` ``(2, 2, …)`` and ``B`` ``(2, …)`` (the trailing axes broadcast; a
-    2 × 2 ``B``: ``A`` with an axis inserted at 2)."""
-    return A[:, 0] * B[0] + A[:, 1] * B[1]
+    """``A @ B`` for 2 × 2 ``A`` ``(2, …, 2, n)`` and ``B`` ``(2, …, m, n)``: rows on the first axis,
+    columns on the one before the pairs ``n`` (the axes between broadcast)."""
+    return A[..., 0:1, :] * B[0] + A[..., 1:2, :] * B[1]
 
 
 def march(rate, E, d, r, closed, jacobian, memory, scale, tol, max_periods, settle_derivatives=True):

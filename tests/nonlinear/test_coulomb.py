@@ -46,10 +46,10 @@ def _states(amplitude, seed):
 def test_cyclic_affine_solves_the_periodic_recurrence(nt):
     rng = np.random.default_rng(nt)
     A = 0.7 * rng.standard_normal((2, 2, nt, 5)) / np.sqrt(2)
-    b = rng.standard_normal((2, nt, 5, 3))
+    b = rng.standard_normal((2, nt, 3, 5))
     x, unique = cyclic_affine(A, b.copy())
     assert unique.all()
-    after = np.einsum("ijkn,jknm->iknm", A, np.roll(x, 1, axis=1)) + b
+    after = np.einsum("ijkn,jkmn->ikmn", A, np.roll(x, 1, axis=1)) + b
     np.testing.assert_allclose(x, after, rtol=0, atol=1e-12 * np.max(np.abs(x)))
 
 

@@ -113,17 +113,18 @@ class _Segment:
     def __init__(self, w, prev, cur, r):
         self.prev, self.cur, self.r = prev, cur, r
         z = w - prev
-        rho = np.hypot(z[0], z[1])
-        self.shrink = rho > r
-        self.zhat = z / np.where(self.shrink, rho, 1.0)         # unit where shrunk
-        self.fac = np.where(self.shrink, r / np.where(self.shrink, rho, 1.0), 1.0)
+        rho = np.sqrt(z[0] * z[0] + z[1] * z[1])
+        shrink = rho > r
+        rho = np.where(shrink, rho, 1.0)
+        self.radial = z * (shrink / rho)                        # ẑ = ∂z/∂r where projected, else 0
+        self.fac = np.where(shrink, r / rho, 1.0)
         self.z = z = z * self.fac
         step = cur - prev
-        L = np.hypot(step[0], step[1])
+        L = np.sqrt(step[0] * step[0] + step[1] * step[1])
         self.Ls = np.where(L > 0, L, 1.0)
         self.e = e = step / self.Ls
         self.nu = nu = np.stack([-e[1], e[0]])
-        self.p, self.q = p, q = z[0] * e[0] + z[1] * e[1], z[0] * nu[0] + z[1] * nu[1]
+        self.p, self.q = p, q = z[0] * e[0] + z[1] * e[1], z[1] * e[0] - z[0] * e[1]
         self.root = root = np.sqrt(np.maximum(r * r - q * q, 0.0))
         self.slip = (L > 0) & (p + root < L) & (r > 0)
         self.sep = r == 0
@@ -141,8 +142,11 @@ class _Segment:
 
     def d_w(self):
         """``∂Φ/∂w`` ``(2, 2, …)``: ``u⊥ (r ∂ψ/∂z)ᵀ M`` in slip, ``M = ∂z/∂w`` when stuck, 0 at ``r = 0``."""
-        slip = self.uperp[:, None] * self._project(self._r_dpsi_dz())[None]
-        return np.where(self.sep, 0.0, np.where(self.slip, slip, self._projection()))
+        h = self._r_dpsi_dz()
+        along = self.radial[0] * h[0] + self.radial[1] * h[1]
+        slip = self.uperp[:, None] * (self.fac * (h - along * self.radial))[None]          # u⊥ (M h)ᵀ
+        stuck = self.fac * ~self.sep * (self._eye() - self.radial[:, None] * self.radial[None])
+        return np.where(self.slip, slip, stuck)
 
     def d_cur(self):
         """``∂Φ/∂c_k`` ``(2, 2, …)``: ``I + u⊥ (r ∂(ψ − θ)/∂c_k)ᵀ`` in slip, 0 when stuck, ``I`` at ``r = 0``."""
@@ -153,10 +157,9 @@ class _Segment:
 
     def d_r(self):
         """``∂Φ/∂r`` ``(2, …)``: ``u + u⊥ r ∂ψ/∂r`` in slip, ``∂z/∂r`` when stuck, 0 at ``r = 0``."""
-        dz = np.where(self.shrink, self.zhat, 0.0)
         h = self._r_dpsi_dz()
-        dpsi = h[0] * dz[0] + h[1] * dz[1] + self.kappa * self.T * self.rest / self.rs
-        return np.where(self.sep, 0.0, np.where(self.slip, self.u + self.uperp * dpsi, dz))
+        dpsi = h[0] * self.radial[0] + h[1] * self.radial[1] + self.kappa * self.T * self.rest / self.rs
+        return np.where(self.sep, 0.0, np.where(self.slip, self.u + self.uperp * dpsi, self.radial))
 
     def partials(self):
         """``∂Φ/∂w``, ``∂Φ/∂c_k``, ``∂Φ/∂r``."""
@@ -165,16 +168,6 @@ class _Segment:
     def _r_dpsi_dz(self):
         """``r ∂ψ/∂z = 2 (T e + a √(r² − q²) ν) / (1 + T²)``."""
         return self.kappa * (self.T * self.e + self.a * self.root * self.nu)
-
-    def _projection(self):
-        """``M = ∂z/∂w``: ``(r/|w − c_{k−1}|)(I − ẑẑᵀ)`` where the slider is projected on the disc, else ``I``."""
-        zz = self.zhat[:, None] * self.zhat[None]
-        return np.where(self.shrink, self.fac * (self._eye() - zz), self._eye())
-
-    def _project(self, h):
-        """``M h`` (``M`` symmetric: also ``hᵀ M``)."""
-        along = self.zhat[0] * h[0] + self.zhat[1] * h[1]
-        return np.where(self.shrink, self.fac * (h - along * self.zhat), h)
 
     def _eye(self):
         return np.eye(2).reshape((2, 2) + (1,) * self.r.ndim)
@@ -250,8 +243,9 @@ def cyclic_affine(A: np.ndarray, b: np.ndarray):
     blocks = nt // size
     P = A.transpose(0, 2, 1, 3).copy().reshape(2, blocks, size, 2, n)  # rows, blocks, samples, columns
     q = b.reshape(2, blocks, size, m, n)
+    scratch = np.empty((2, blocks, m, n))
     for j in range(1, size):
-        q[:, :, j] += _times(P[:, :, j], q[:, :, j - 1])
+        _add_times(q[:, :, j], P[:, :, j], q[:, :, j - 1], scratch)
         P[:, :, j] = _times(P[:, :, j], P[:, :, j - 1])
     through_P, through_q = P[:, :, -1].copy(), q[:, :, -1].copy()      # period's start → each block's end
     for k in range(1, blocks):
@@ -261,7 +255,7 @@ def cyclic_affine(A: np.ndarray, b: np.ndarray):
     starts = np.concatenate([start[:, None], _times(through_P[:, :-1], start[:, None]) + through_q[:, :-1]],
                             axis=1)
     for j in range(size):
-        q[:, :, j] += _times(P[:, :, j], starts)
+        _add_times(q[:, :, j], P[:, :, j], starts, scratch)
     return q.reshape(2, nt, m, n), unique
 
 
@@ -279,6 +273,13 @@ def _periodic_start(P, q):
     unique = np.abs(det) > SINGULAR
     inverse = np.array([[I_P[1, 1], -I_P[0, 1]], [-I_P[1, 0], I_P[0, 0]]]) / np.where(unique, det, 1.0)
     return _times(inverse, q), unique
+
+
+def _add_times(out, A, B, scratch):
+    """``out += A @ B`` as :func:`_times`, through ``scratch`` (the shape of ``out``) instead of temporaries."""
+    for k in range(2):
+        np.multiply(A[..., k:k + 1, :], B[k], out=scratch)
+        out += scratch
 
 
 def _times(A, B):

@@ -71,9 +71,9 @@ def test_the_closed_form_partials_are_the_forward_mode_derivatives():
     r = rng.uniform(0.2, 1.5, n) * (rng.random(n) > 0.05)            # some separated (r = 0)
     w = prev + rng.standard_normal((2, n)) * rng.choice([0.3, 1.0, 3.0], n)
     step = _Segment(w, prev, cur, r)
-    stuck = ~step.slip & ~step.sep
-    for branch in (step.slip & step.shrink, step.slip & ~step.shrink, stuck & step.shrink,
-                   stuck & ~step.shrink, step.sep, ~step.sep & np.all(cur == prev, axis=0)):
+    stuck, outside = ~step.slip & ~step.sep, np.hypot(*(w - prev)) > r
+    for branch in (step.slip & outside, step.slip & ~outside, stuck & outside, stuck & ~outside, step.sep,
+                   ~step.sep & np.all(cur == prev, axis=0)):
         assert branch.sum() >= 50
     D = _forward_mode(w, prev, cur, r)
     closed_form = {"w": (step.d_w(), D[:, 0:2], 1e-12), "c_k": (step.d_cur(), D[:, 4:6], 1e-11),

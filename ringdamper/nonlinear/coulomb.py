@@ -61,7 +61,7 @@ def coulomb_slider(rate, E, d, r, closed, jacobian, memory, tol=1e-13, max_perio
     if not moving.size:
         return W, dW
     c, rm = np.ascontiguousarray(d[moving].transpose(1, 2, 0)), np.ascontiguousarray(r[moving].T)
-    guess = play_operator(d[moving] - r[moving, None], d[moving] + r[moving, None], memory[moving])[0]
+    guess = play_operator(d[moving] - r[moving, None], d[moving] + r[moving, None], memory[moving], False)[0]
     Wm, ok, neutral = _newton_trajectory(c, rm, np.ascontiguousarray(guess.transpose(1, 2, 0)), scale, tol)
     stationary = np.max(np.abs(Wm - np.roll(Wm, 1, axis=1)), axis=(0, 1)) <= tol * scale
     neutral |= ok & stationary

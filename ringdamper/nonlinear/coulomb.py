@@ -175,27 +175,28 @@ class _Segment:
 
 def _newton_trajectory(c, r, guess, scale, tol):
     """Newton on the cyclic trajectory (module docstring) from ``guess`` ``(2, Nt, n)`` (``c`` the same,
-    ``r`` ``(Nt, n)``): the periodic trajectories, which pairs converged and which met a singular
-    periodicity matrix on the way."""
-    W = guess.copy()
+    ``r`` ``(Nt, n)``): the periodic trajectories of the pairs that converged (the others' are
+    meaningless), which converged and which met a singular periodicity matrix on the way. A pair leaves
+    the iteration when it converges or meets a singular matrix."""
+    W, periodic = guess.copy(), guess.copy()
     prev = np.roll(c, 1, axis=1)
     ok, neutral = np.zeros(c.shape[2], bool), np.zeros(c.shape[2], bool)
-    todo = np.arange(c.shape[2])
-    for _ in range(NEWTON_ITERATIONS + 1):
-        if not todo.size:
-            break
-        step = _Segment(np.roll(W[..., todo], 1, axis=1), prev[..., todo], c[..., todo], r[:, todo])
-        R = W[..., todo] - step.value()
+    pairs = np.arange(c.shape[2])                                # the pairs iterated: columns of W, c, r
+    for iteration in range(NEWTON_ITERATIONS + 1):
+        step = _Segment(np.roll(W, 1, axis=1), prev, c, r)
+        R = W - step.value()
         done = np.max(np.abs(R), axis=(0, 1)) <= tol * scale
-        ok[todo[done]] = True
-        if done.all():
+        periodic[..., pairs[done]] = W[..., done]
+        ok[pairs[done]] = True
+        if done.all() or iteration == NEWTON_ITERATIONS:
             break
-        delta, unique = cyclic_affine(step.d_w()[..., ~done], -R[:, :, None, ~done])
-        todo = todo[~done]
-        W[..., todo[unique]] += delta[:, :, 0, unique]
-        neutral[todo[~unique]] = True
-        todo = todo[unique]
-    return W, ok, neutral
+        delta, unique = cyclic_affine(step.d_w(), -R[:, :, None])
+        W += delta[:, :, 0]
+        neutral[pairs[~unique & ~done]] = True
+        keep = unique & ~done
+        if not keep.all():
+            W, prev, c, r, pairs = W[..., keep], prev[..., keep], c[..., keep], r[:, keep], pairs[keep]
+    return periodic, ok, neutral
 
 
 def _trajectory_derivative(rate, E, c, W, r, closed, jacobian=True):

@@ -30,8 +30,11 @@ The periodic state solves the cyclic system ``W_k = Φ_k(W_{k−1})``, ``k = 0..
 Newton and the implicit function theorem take the step map's partial derivatives in closed form
 (:class:`_Segment`); the march carries forward-mode derivatives (:class:`_Dual`) through
 :func:`tractrix_step`, the same sweep written once more, operation by operation: it is the reference
-the tests hold the closed form to. Trajectories inside Newton are laid out ``(2, Nt, n)`` (component,
-sample, pair).
+the tests hold the closed form to. Inside Newton and the derivative, trajectories are laid out
+``(2, Nt, n)`` (component, sample, pair: the 2 × 2 products broadcast over contiguous rows of pairs).
+On the default ring's backbone states (``make bench``, ``coulomb``) a stuck state takes 0.2 ms, a
+slipping one 5–6 ms (about 60 % Newton, 30 % the derivatives), 24.5× less than the march over the
+backbone.
 """
 from __future__ import annotations
 

@@ -173,6 +173,7 @@ class _Segment:
         return self.kappa * (self.T * self.e + self.a * self.root * self.nu)
 
     def _eye(self):
+        """``I`` ``(2, 2, 1, …)``, broadcasting over the samples and pairs."""
         return np.eye(2).reshape((2, 2) + (1,) * self.r.ndim)
 
 

@@ -313,11 +313,8 @@ class CondensedHBM:
         ``δη_C = −(Ψ_Cᴴ δΛ + η_C δz)/z_C`` for the condensed modes."""
         S, Cs = self.S[h], self.Cset[h]
         eta = ev.eta[h]
-        if row is None:
-            n2, v = float(np.sum(np.abs(eta) ** 2)), np.conj(eta)
-        else:
-            a = row @ eta
-            n2, v = float(abs(a) ** 2), np.conj(a) * row
+        n2 = squared_amplitude(eta, row)
+        v = np.conj(eta) if row is None else np.conj(row @ eta) * row
         z, dz_dw, dz_dx = self._modal_impedance(h, omega, xi)
         etaC, vC = eta[Cs], v[Cs]
         grad = np.zeros(self.n_core)
@@ -333,7 +330,7 @@ class CondensedHBM:
         d_x = -2.0 * _sum_real_product(weights, dz_dx[Cs] / z[Cs])
         dLam_dw = self._velocity_term(ev.aft)
         if dLam_dw is not None:                    # η_C = (f − Ψ_Cᴴ Λ)/z, Λ depending on ω
-            d_w += 2.0 * np.sum(np.real(vC * (-(self.PsiCH[h] @ dLam_dw[h]) / z[Cs])))
+            d_w -= 2.0 * _sum_real_product(vC, (self.PsiCH[h] @ dLam_dw[h]) / z[Cs])
         return n2, grad, d_w, d_x
 
     def _velocity_term(self, aft) -> np.ndarray | None:
@@ -494,6 +491,12 @@ class CoreJacobian:
         if self.rotation is not None:
             self.rotation.apply(J)
         return J
+
+
+def squared_amplitude(eta: np.ndarray, row: np.ndarray | None = None) -> float:
+    """``Σ_r |η_r|²`` of the modal coordinates ``eta`` (``Q_hᴴ M_h Q_h``), or ``|ρ η|²`` for a modal
+    row ``ρ = w Φ_h`` (the squared amplitude of ``w Q_h``)."""
+    return float(np.sum(np.abs(eta) ** 2)) if row is None else float(abs(row @ eta) ** 2)
 
 
 def _sum_real_product(a: np.ndarray, b: np.ndarray) -> float:

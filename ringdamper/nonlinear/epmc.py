@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes, structural_damping
+from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes, squared_amplitude, structural_damping
 from ringdamper.nonlinear.continuation import ContinuationPoint, NaturalResult, StepControl, natural_then_arclength
 from ringdamper.nonlinear.elements import Elements
 from ringdamper.nonlinear.fourier import default_nt
@@ -112,8 +112,7 @@ class EPMCProblem:
         m = self.model
         y, omega, xi = z[:-2], z[-2], z[-1]
         ev = m.evaluate(y, omega, xi, jacobian)
-        eta1 = ev.eta[1]
-        n2 = float(np.sum(np.abs(eta1) ** 2)) if self.row is None else float(abs(self.row @ eta1) ** 2)
+        n2 = squared_amplitude(ev.eta[1], self.row)
         r = np.r_[ev.r, 0.5 * np.log(n2) - s, y[self.phase_index]]
         if not jacobian:
             return r, None, None, m.n_core, ev

@@ -30,7 +30,9 @@ multiplied by ``min(grow, turn/θ)`` when the corrector was cheap (effort ≤ ``
 ``hard``), never below half (so the tangent turns by about ``turn`` per step, whatever the
 initial and maximum steps). A corrector is a failure once it has used
 :attr:`StepControl.corrector` fresh Jacobians without converging (fail fast: a smaller step is
-cheaper than a long Newton far from the branch). ``jump_mask`` restricts the geometry to the unknowns that identify
+cheaper than a long Newton far from the branch), and so is one whose damped Newton cycles between
+contact states (:attr:`StepControl.stop_cycling`: a second step at the minimum damping, see
+:func:`ringdamper.nonlinear.newton.newton`). ``jump_mask`` restricts the geometry to the unknowns that identify
 the branch (the EPMC leaves out the mean values, which move freely where the last contact
 holding a rigid-body motion lets go). Failures never raise: they end the run with a status
 (:class:`ringdamper.status.Status`). A natural step that ends between two grid values may stop its
@@ -76,6 +78,7 @@ class StepControl:
     turn: float = 0.1
     corrector: int | None = None  # fresh Jacobians of a corrector before its step is rejected (None: max_iter)
     between: float | None = None  # corrector tolerance between grid values (None: the run's tol)
+    stop_cycling: bool = True     # a corrector whose damped Newton cycles fails its step at once
 
     def __post_init__(self):
         if not 0 < self.minimum <= self.initial:
@@ -222,7 +225,8 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
         s_t = grid[gi] if on_grid else s_t
         z_pred = z + (s_t - s) * tangent
         res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale,
-                     steps.corrector_tolerance(tol, s_t - s, on_grid), corrector, factorization=fac)
+                     steps.corrector_tolerance(tol, s_t - s, on_grid), corrector, factorization=fac,
+                     give_up_at_min_damping=steps.stop_cycling)
         why = res.reason
         if res.converged:
             fac_t, tangent_t = _natural_tangent(fun, dfun_ds, res.z, s_t, res.factorization, scale)
@@ -335,7 +339,8 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
             Jb = bordered(J, rows=plane) if jac else None
             return np.r_[r, plane @ (zz - zp)], Jb, trivial, n_core, payload
 
-        res = newton(on_plane, zp, lambda _: scale, tol, corrector, factorization=fac)
+        res = newton(on_plane, zp, lambda _: scale, tol, corrector, factorization=fac,
+                     give_up_at_min_damping=steps.stop_cycling)
         if not res.converged:
             return res, None, None, 0.0, res.reason
         chord = (res.z - z) / scale

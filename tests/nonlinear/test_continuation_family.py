@@ -125,11 +125,11 @@ def test_step_control_refuses_bad_settings(kw, field):
 
 @pytest.mark.parametrize("seed", [2, 45])
 def test_fail_fast_correctors_keep_the_branch_with_fewer_factorisations(seed, monkeypatch):
-    """A corrector still unconverged after ``StepControl.corrector`` fresh Jacobians fails its step,
-    which is halved, instead of running on to ``max_iter`` (20). On chains of the family whose
-    correctors fail on the way, the EPMC's default steps (with the limit) trace the backbone of the
-    same steps without it, value for value (without rigid-body modes to pin, a failed corrector leaves
-    nothing behind), with fewer LU
+    """A corrector still unconverged after ``StepControl.corrector`` fresh Jacobians, or whose damped
+    Newton cycles (``StepControl.stop_cycling``), fails its step, which is halved, instead of running
+    on to ``max_iter`` (20). On chains of the family whose correctors fail on the way, the EPMC's
+    default steps (both rules) trace the backbone of the same steps without them, value for value
+    (without rigid-body modes to pin, a failed corrector leaves nothing behind), with fewer LU
     factorisations."""
     count = [0]
     factorize = newton.Factorization.__init__
@@ -145,7 +145,9 @@ def test_fail_fast_correctors_keep_the_branch_with_fewer_factorisations(seed, mo
     for limit in (True, False):
         count[0] = 0
         steps = epmc_module.default_steps()
-        bb = epmc(st, c, alpha, steps=steps if limit else dataclasses.replace(steps, corrector=None), **OPTIONS)
+        if not limit:
+            steps = dataclasses.replace(steps, corrector=None, stop_cycling=False)
+        bb = epmc(st, c, alpha, steps=steps, **OPTIONS)
         runs[limit] = bb, count[0]
     (fast, n_fast), (full, n_full) = runs[True], runs[False]
     assert fast.status.tolist() == full.status.tolist()

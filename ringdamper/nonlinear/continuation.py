@@ -46,6 +46,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from ringdamper.nonlinear import krylov
 from ringdamper.nonlinear.jacobian import bordered
 from ringdamper.nonlinear.newton import NewtonResult, linear_solver, newton
 from ringdamper.status import Status
@@ -67,7 +68,10 @@ class StepControl:
     angle between the tangents of successive points (the step follows the curvature); a step
     whose tangent turns by more than twice that is rejected and halved (module docstring).
     ``between``: looser corrector tolerance of the natural steps that end between grid values
-    (:meth:`corrector_tolerance`; None: the run's tolerance everywhere)."""
+    (:meth:`corrector_tolerance`; None: the run's tolerance everywhere). ``stop_cycling``: a
+    corrector whose damped Newton cycles fails its step at once (module docstring).
+    ``tangent_rtol``: accuracy (scaled 2-norm) of the arc-length tangents that GMRES solves on a
+    lagged LU (:mod:`ringdamper.nonlinear.krylov`)."""
 
     initial: float
     minimum: float
@@ -79,6 +83,7 @@ class StepControl:
     corrector: int | None = None  # fresh Jacobians of a corrector before its step is rejected (None: max_iter)
     between: float | None = None  # corrector tolerance between grid values (None: the run's tol)
     stop_cycling: bool = True     # a corrector whose damped Newton cycles fails its step at once
+    tangent_rtol: float = krylov.RTOL  # accuracy of arc-length tangents by GMRES on a lagged LU
 
     def __post_init__(self):
         if not 0 < self.minimum <= self.initial:
@@ -345,7 +350,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
             return res, None, None, 0.0, res.reason
         chord = (res.z - z) / scale
         _, J1, trivial1, n_core1, _ = fun(res.z, True)
-        fac1, t1 = _tangent(J1, trivial1, n_core1, chord, scale, res.factorization)
+        fac1, t1 = _tangent(J1, trivial1, n_core1, chord, scale, res.factorization, steps.tangent_rtol)
         geometry = _step_geometry(t, t1, chord, jump_mask)
         why = _untrusted(geometry, max_angle, ds <= corner * steps.minimum)
         if not why and _angle(-t, chord) <= np.pi / 4:
@@ -399,13 +404,14 @@ def _turn_corner(step, fun, z, t, ds, largest, scale):
     return None
 
 
-def _tangent(J, trivial, n_core, direction_u, scale, previous):
+def _tangent(J, trivial, n_core, direction_u, scale, previous, rtol=krylov.RTOL):
     """Solver of ``J`` bordered by ``direction_u / scale`` (:func:`ringdamper.nonlinear.newton.linear_solver`,
-    on the factorisation of the solver ``previous``, if any) and the unit tangent in scaled
+    on the factorisation of the solver ``previous``, if any, to ``rtol``) and the unit tangent in scaled
     variables: ``J (scale·t) = 0``, oriented along ``direction_u``."""
     e = np.zeros(J.shape[1])
     e[-1] = 1.0
-    fac = linear_solver(bordered(J, rows=direction_u / scale), trivial, n_core, previous, 1.0 / scale)
+    fac = linear_solver(bordered(J, rows=direction_u / scale), trivial, n_core, previous, 1.0 / scale,
+                        rtol)
     return fac, _unit(fac.solve(e) / scale)
 
 

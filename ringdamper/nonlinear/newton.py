@@ -69,15 +69,16 @@ def factorize(J, trivial: np.ndarray | None, n_core: int) -> Factorization:
 
 
 def linear_solver(J, trivial: np.ndarray | None, n_core: int, previous=None,
-                  weights: np.ndarray | None = None):
+                  weights: np.ndarray | None = None, rtol: float = krylov.RTOL):
     """Solver of systems with the Jacobian ``J``: GMRES preconditioned by the LU of ``previous``
     (a solver of an earlier Jacobian of the same shape) when ``J`` is an operator of at least
     :data:`ringdamper.nonlinear.krylov.MIN_SIZE` unknowns (:class:`ringdamper.nonlinear.krylov.LaggedSolver`;
-    ``weights``: 1/scale of the unknowns), otherwise the :class:`Factorization` of ``J``."""
+    ``weights``: 1/scale of the unknowns; ``rtol``: the GMRES accuracy), otherwise the
+    :class:`Factorization` of ``J``."""
     lagged = is_operator(J) and J.shape[0] >= krylov.MIN_SIZE
     if lagged and previous is not None and previous.factorization.n == J.shape[0]:
         return LaggedSolver(J, previous.factorization, weights,    # A: the operator J formed anew
-                            lambda A: Factorization(A, trivial, n_core, overwrite=True))
+                            lambda A: Factorization(A, trivial, n_core, overwrite=True), rtol=rtol)
     return factorize(J, trivial, n_core)
 
 

@@ -12,12 +12,13 @@ from ringdamper.nonlinear.newton import Factorization, linear_solver
 
 
 class Operator:
-    """A dense matrix seen only through its products (and formed on demand)."""
+    """A dense matrix seen only through its products (counted; and formed on demand)."""
 
     def __init__(self, A):
-        self.A, self.shape, self.formed = A, A.shape, 0
+        self.A, self.shape, self.formed, self.products = A, A.shape, 0, 0
 
     def matvec(self, v):
+        self.products += 1
         return self.A @ v
 
     def toarray(self, out=None):
@@ -76,3 +77,20 @@ def test_bordered_operator_equals_the_bordered_matrix():
     v = rng.standard_normal(6)
     assert np.allclose(B.matvec(v), B.toarray() @ v, rtol=1e-14)
     assert np.array_equal(B.toarray(), bordered(A, col, rows))
+
+
+def test_linear_solver_gives_the_accuracy_asked_with_fewer_products():
+    """``linear_solver(…, rtol)`` (the forced responses' tangents: 1e-4) solves to that accuracy and
+    no further: fewer ``J v`` products than at the default 1e-6, an error above the default's."""
+    A0, A1, b = _systems(krylov.MIN_SIZE, 5e-2, 0)
+    exact = np.linalg.solve(A1, b)
+    base = Factorization(A0, None, A0.shape[0])
+    errors, products = {}, {}
+    for rtol in (krylov.RTOL, 1e-4):
+        J = Operator(A1)
+        solver = linear_solver(J, None, A0.shape[0], base, np.ones(A0.shape[0]), rtol=rtol)
+        x = solver.solve(b)
+        assert solver.exact is None
+        errors[rtol], products[rtol] = np.linalg.norm(x - exact) / np.linalg.norm(exact), J.products
+        assert errors[rtol] <= 10 * rtol
+    assert products[1e-4] < products[krylov.RTOL] and errors[1e-4] > errors[krylov.RTOL]

@@ -103,7 +103,7 @@ def time_samples(H: int, base_H: int, base_nt: int) -> int:
 
 
 def _raise(current: Backbone, j: int, H: int, nt: int, tol: float, below: dict,
-           alpha: float) -> tuple[Backbone | None, str]:
+           alpha: float, max_arc_points: int | None) -> tuple[Backbone | None, str]:
     """Point ``j`` of ``current`` at ``H`` (``below``: the grid point below, H -> (backbone, index),
     at the truncations it was solved at): Newton (at most :data:`RAISE_MAX_ITER` Jacobians) from its
     solution zero-padded; else from that plus the change raising H made to the point below; else
@@ -120,14 +120,17 @@ def _raise(current: Backbone, j: int, H: int, nt: int, tol: float, below: dict,
         if higher is not None:
             return higher, ""
         why = f"{why}; shifted start: {why_shift}"
-    higher, why_below = continue_point(below[H][0], below[H][1], alpha, tol)
+    higher, why_below = continue_point(below[H][0], below[H][1], alpha, tol, max_arc_points=max_arc_points)
     return higher, f"{why}; {why_below}" if higher is None else ""
 
 
 def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, zeta_s: float,
-                    tol: float = 1e-8, change_tol: float = CHANGE_TOLERANCE) -> AdaptiveResult:
+                    tol: float = 1e-8, change_tol: float = CHANGE_TOLERANCE,
+                    max_arc_points: int | None = None) -> AdaptiveResult:
     """Every point of ``backbone`` at the truncation the rule of the module doc picks (H₀ = the
-    backbone's, steps of 2 up to ``H_max``; the structure must hold harmonics up to ``H_max``)."""
+    backbone's, steps of 2 up to ``H_max``; the structure must hold harmonics up to ``H_max``;
+    ``max_arc_points``: arc-length points a continuation at the higher H may take past a fold, as in
+    :func:`ringdamper.nonlinear.epmc.epmc`)."""
     H0, nt0 = backbone.H, backbone.nt
     if H_max > backbone.model.structure.H_max:
         raise ValueError(f"H_max = {H_max} exceeds the {backbone.model.structure.H_max} harmonics of the "
@@ -143,7 +146,7 @@ def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, 
         point, previous, solved = {k: v[i] for k, v in values.items()}, None, {H0: (backbone, i)}
         while H + 2 <= H_max and needs_more_harmonics(point, previous, change_tol):
             higher, why = _raise(current, j, H + 2, time_samples(H + 2, H0, nt0), tol, below,
-                                 backbone.alpha[i])
+                                 backbone.alpha[i], max_arc_points)
             resolved += 1
             if higher is None:
                 notes.append(f"alpha = {backbone.alpha[i]:.4g}: {why}; kept H = {H}")

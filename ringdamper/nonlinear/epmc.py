@@ -396,10 +396,11 @@ def _padded_state(backbone: Backbone, i: int, model: CondensedHBM) -> np.ndarray
 
 
 def continue_point(backbone: Backbone, j: int, alpha: float, tol: float = 1e-8, max_iter: int = 20,
-                   steps: StepControl | None = None) -> tuple[Backbone | None, str]:
+                   steps: StepControl | None = None,
+                   max_arc_points: int | None = None) -> tuple[Backbone | None, str]:
     """Continuation at the truncation of ``backbone`` from its grid point ``j`` to the amplitude
-    ``alpha`` (above α_j; ``steps`` as in :func:`epmc`): ``(one-point backbone, "")``, or ``(None,
-    why)`` if it does not get there. The problem, gauge position and pinned directions are those of
+    ``alpha`` (above α_j; ``steps`` and ``max_arc_points`` as in :func:`epmc`): ``(one-point backbone,
+    "")``, or ``(None, why)`` if it does not get there. The problem, gauge position and pinned directions are those of
     point ``j``; the model is shared with ``backbone``."""
     t0 = time.perf_counter()
     model = backbone.model
@@ -410,7 +411,8 @@ def continue_point(backbone: Backbone, j: int, alpha: float, tol: float = 1e-8, 
     run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log([alpha]), problem.scale,
                                  steps or default_steps(), tol, max_iter,
                                  accept=problem.accept, s_start=np.log(backbone.alpha[j]),
-                                 on_failure=problem.on_failure, jump_mask=problem.jump_mask())
+                                 on_failure=problem.on_failure, jump_mask=problem.jump_mask(),
+                                 max_points=max_arc_points)
     if run.points[0] is None:
         return None, f"continuation at H = {model.H} from alpha = {backbone.alpha[j]:.4g}: {run.reason[0]}"
     return _collect(run, model, np.array([alpha]), problem, time.perf_counter() - t0,

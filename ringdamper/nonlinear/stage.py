@@ -29,7 +29,8 @@ from ringdamper.status import CHAIN_FAILED, Status
 
 log = logging.getLogger(__name__)
 
-#: arc-length points a ring's continuation may spend past a fold in α (the driver's default is 400).
+#: arc-length points a ring's continuation (and that of a point solved again at a higher H, docs/nonlinear_core.md
+#: §4.5) may spend past a fold in α (the driver's default is 400).
 #: Measured on the 81 rings of an adaptive campaign (docs/nonlinear_core.md §4.1): 13 went past a fold,
 #: they used 1-84 points, and the latest grid value any of them solved came 65 points into the arc; the
 #: one ring that used 400 (210 s, 21 times the median) solved its last grid value at the 4th and spent
@@ -111,7 +112,7 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
     backbone, contacts, _, omega_stuck = solve_backbone(reduced, static, config, target_hz, alpha, H0,
                                                         cfg["n_time_samples"], structure_harmonics=H_max)
     adaptive = adapt_harmonics(backbone, contacts, H_max, cfg["structural_damping_ratio"],
-                               tol=cfg.get("continuation_tolerance", 1e-8))
+                               tol=cfg.get("continuation_tolerance", 1e-8), max_arc_points=ARC_POINTS)
     out = adaptive.values
     warn_truncation(out["highest_harmonic_energy"], alpha)
     warn_separation(out["lifting_pairs"], alpha, int(adaptive.n_harmonics.max()))

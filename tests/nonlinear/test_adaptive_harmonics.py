@@ -89,3 +89,29 @@ def test_max_harmonics_is_bounded_by_the_reduction_and_the_base():
     config["dnnm"]["max_harmonics"] = config["dnnm"]["n_harmonics"] - 1
     with pytest.raises(ConfigError, match="dnnm.max_harmonics"):
         validate_config(config)
+
+
+def test_higher_h_continuation_takes_the_arc_budget_given(gap, monkeypatch):
+    """Where Newton at the higher H fails from both starts, the point is continued at that H from the
+    point below; that continuation gets the arc-length budget passed in (the stage's ``ARC_POINTS``),
+    not the driver's default, and solves the point."""
+    import ringdamper.nonlinear.adaptive as adaptive_module
+    import ringdamper.nonlinear.epmc as epmc_module
+
+    ref, base, contacts, _ = gap
+    resolve, arc = adaptive_module.resolve_point, epmc_module.natural_then_arclength
+    calls, budgets = [0], []
+
+    def first_only(*args, **kwargs):                   # Newton at H = 5 only for the first raised point
+        calls[0] += 1
+        return resolve(*args, **kwargs) if calls[0] == 1 else (None, "refused")
+
+    def recorded(*args, **kwargs):
+        budgets.append(kwargs.get("max_points"))
+        return arc(*args, **kwargs)
+
+    monkeypatch.setattr(adaptive_module, "resolve_point", first_only)
+    monkeypatch.setattr(epmc_module, "natural_then_arclength", recorded)
+    adaptive = adapt_harmonics(base, contacts, 5, ZETA_S, tol=TOL, max_arc_points=7)
+    assert budgets and set(budgets) == {7}
+    assert np.sum(adaptive.n_harmonics == 5) == len(budgets) + 1       # each of them solved at H = 5

@@ -399,9 +399,9 @@ def continue_point(backbone: Backbone, j: int, alpha: float, tol: float = 1e-8, 
                    steps: StepControl | None = None,
                    max_arc_points: int | None = None) -> tuple[Backbone | None, str]:
     """Continuation at the truncation of ``backbone`` from its grid point ``j`` to the amplitude
-    ``alpha`` (above α_j; ``steps`` and ``max_arc_points`` as in :func:`epmc`): ``(one-point backbone,
-    "")``, or ``(None, why)`` if it does not get there. The problem, gauge position and pinned directions are those of
-    point ``j``; the model is shared with ``backbone``."""
+    ``alpha`` (above α_j; ``steps`` and ``max_arc_points`` as in :func:`epmc`): ``(one-point
+    backbone, "")``, or ``(None, why)`` if it does not get there. The problem, gauge position and
+    pinned directions are those of point ``j``; the model is shared with ``backbone``."""
     t0 = time.perf_counter()
     model = backbone.model
     z0 = backbone.state(j)

@@ -29,8 +29,8 @@ from ringdamper.status import CHAIN_FAILED, Status
 
 log = logging.getLogger(__name__)
 
-#: arc-length points a ring's continuation (and that of a point solved again at a higher H, docs/nonlinear_core.md
-#: §4.5) may spend past a fold in α (the driver's default is 400).
+#: arc-length points a ring's continuation, and that of a point solved again at a higher H
+#: (docs/nonlinear_core.md §4.5), may spend past a fold in α (the driver's default is 400).
 #: Measured on the 81 rings of an adaptive campaign (docs/nonlinear_core.md §4.1): 13 went past a fold,
 #: they used 1-84 points, and the latest grid value any of them solved came 65 points into the arc; the
 #: one ring that used 400 (210 s, 21 times the median) solved its last grid value at the 4th and spent

@@ -110,7 +110,7 @@ def modal_hill_matrices(model, ev, omega: float, band: float = BAND):
     KP = Kc @ Pfull if through is None else sla.lu_solve(through, Kc @ Pfull, check_finite=False)
     J, D = Z + Pfull.T @ KP, D1
     if ev.aft.jac_velocity is not None:
-        D = D + Pfull.T @ _velocity_force(_contact_matrix(ev.aft.jac_velocity, model.p), Kc, G, Pfull,
+        D = D + Pfull.T @ _velocity_force(_contact_matrix(ev.aft.jac_velocity, model.p), G, Pfull, KP,
                                           through)
     if ev.gauge.shape[1]:                           # hold the gauged rigid-body directions
         Q = _held_space(model, ev.gauge, kept0, J.shape[0])
@@ -158,15 +158,15 @@ def _modal_blocks(model, omega: float, band: float):
     return sla.block_diag(*Z), sla.block_diag(*D1), Pfull, G, kept[0]
 
 
-def _velocity_force(Kv, Kc, G: np.ndarray, P: np.ndarray, through) -> np.ndarray:
+def _velocity_force(Kv, G: np.ndarray, P: np.ndarray, KP: np.ndarray, through) -> np.ndarray:
     """``K_v,eff P = (I + K_c G)⁻¹ K_v (I + G K_c)⁻¹ P``: the contact force per unit ``λ`` of the
     velocity Jacobian ``K_v``, to first order in ``λ`` through the modes condensed at ``λ = 0``
     (module docstring), with ``through`` the LU of ``I + K_c G`` (None when no mode is condensed:
-    ``K_v P``)."""
+    ``K_v P``) and ``KP = (I + K_c G)⁻¹ K_c P``, whence ``(I + G K_c)⁻¹ P = P − G KP`` (push-through
+    identity: no second factorisation)."""
     if through is None:
         return Kv @ P
-    inner = np.linalg.solve(np.eye(G.shape[0]) + G @ Kc, P)
-    return sla.lu_solve(through, Kv @ inner, check_finite=False)
+    return sla.lu_solve(through, Kv @ (P - G @ KP), check_finite=False)
 
 
 def _held_space(model, gauge: np.ndarray, kept0: np.ndarray, n: int) -> np.ndarray:

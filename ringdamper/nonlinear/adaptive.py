@@ -4,14 +4,19 @@ The continuation runs at the base truncation H₀ over the whole amplitude grid.
 point, a usable grid point is solved again at H + 2 (:func:`_raise`) while
 
 * its truncation indicator ε_H exceeds :data:`ringdamper.nonlinear.truncation.THRESHOLD`, or
-* preloaded pairs lift off during the period (``lifting_pairs > 0``,
-  :mod:`ringdamper.nonlinear.separation`) and the point has not yet been seen to converge in H: at
-  H₀, or where the largest relative change of ω, ζ, γ and |q_res,z| from the previous truncation
-  exceeds :data:`CHANGE_TOLERANCE`,
+* the point is *watched* and has not yet been seen to converge in H: at H₀, or where the largest
+  relative change of ω, ζ, γ and |q_res,z| from the previous truncation exceeds
+  :data:`CHANGE_TOLERANCE`. Watched are the points where preloaded pairs lift off during the period
+  (``lifting_pairs > 0``, :mod:`ringdamper.nonlinear.separation`) and the slip onset: the first
+  slipping point (ζ > :data:`SLIP_ZETA`) above a stuck one (preloaded pairs hold all period long and
+  none slips), and each next slipping point while the one below moved by more than the tolerance
+  from H₀ to H₀ + 2,
 
-up to ``H_max``. Lift-off has its own rule because it does not vanish as H grows (the clipped normal
-force feeds every harmonic) while the highest-harmonic energy can stay below its threshold where
-H₀ is off by 34 % in ζ (the default ring's top point): there the measure is how much the point moves.
+up to ``H_max``. Lift-off and slip onset have rules of their own because the highest-harmonic energy
+can stay far below its threshold where H₀ is off: by 34 % in ζ at the default ring's top point, where
+lift-off does not vanish as H grows (the clipped normal force feeds every harmonic), and by 2.7 % at its
+first slipping point, where a short slip event of the period has harmonics that the displacements
+hardly show (ε₃ = 7e-7). There the measure is how much the point moves.
 A point whose indicators are quiet keeps H₀ and its continuation solution untouched. A higher-H
 Newton that fails keeps the last converged truncation and says so in the point's reason. Every
 output of a point (backbone, E-EBM, indicators, status) comes from its final truncation.
@@ -36,6 +41,10 @@ log = logging.getLogger(__name__)
 #: largest relative change of ω, ζ, γ and |q_res,z| between two truncations H − 2 and H at which a
 #: lifting point counts as converged in H
 CHANGE_TOLERANCE = 0.01
+
+#: ζ above which a point slips: below the stick limit ζ is zero to rounding (|ζ| ≤ 1e-16 measured on the
+#: rings and the test oscillators), the first slipping points of the campaign's rings have ζ ≥ 1e-4
+SLIP_ZETA = 1e-9
 
 #: Newton iterations (fresh Jacobians) of a higher-H solve before the next start is tried: on the default
 #: ring the converging ones take at most 6
@@ -84,13 +93,15 @@ def relative_change(new: dict, old: dict) -> float:
     return max(c if np.isfinite(c) else np.inf for c in change)
 
 
-def needs_more_harmonics(point: dict, previous: dict | None, change_tol: float = CHANGE_TOLERANCE) -> bool:
-    """The rule of the module doc for one point (``previous``: the same point at H − 2, None at H₀)."""
+def needs_more_harmonics(point: dict, previous: dict | None, change_tol: float = CHANGE_TOLERANCE,
+                         onset: bool = False) -> bool:
+    """The rule of the module doc for one point (``previous``: the same point at H − 2, None at H₀;
+    ``onset``: the point belongs to the slip onset)."""
     if not usable_status(point["status"]):
         return False
     if point["highest_harmonic_energy"] > THRESHOLD:
         return True
-    if not point["lifting_pairs"] > 0:
+    if not (point["lifting_pairs"] > 0 or onset):
         return False
     return previous is None or relative_change(point, previous) > change_tol
 
@@ -141,10 +152,17 @@ def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, 
     used = np.full(backbone.alpha.size, H0)
     notes, resolved = [], 0
     below: dict = {}                    # H -> (backbone, index) of the grid point below, solved at H
+    usable = usable_status(values["status"])
+    slipping = usable & (values["zeta"] > SLIP_ZETA)
+    with np.errstate(invalid="ignore"):                 # stuck: preloaded pairs hold and none slips
+        stuck = usable & ~slipping & (values["normal_force_ratio_min"] > 0)
+    onset_open = False                  # the next slipping point belongs to the slip onset
     for i in range(backbone.alpha.size):
         current, j, H = backbone, i, H0
         point, previous, solved = {k: v[i] for k, v in values.items()}, None, {H0: (backbone, i)}
-        while H + 2 <= H_max and needs_more_harmonics(point, previous, change_tol):
+        onset = bool(slipping[i]) and onset_open
+        first_change = 0.0
+        while H + 2 <= H_max and needs_more_harmonics(point, previous, change_tol, onset):
             higher, why = _raise(current, j, H + 2, time_samples(H + 2, H0, nt0), tol, below,
                                  backbone.alpha[i], max_arc_points)
             resolved += 1
@@ -155,6 +173,8 @@ def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, 
             solved[H + 2] = (higher, 0)
             out = backbone_outputs(higher, contacts, zeta_s)
             previous, point = point, {k: v[0] for k, v in out.items()}
+            if H == H0:
+                first_change = relative_change(point, previous)
             current, j, H = higher, 0, H + 2
             if higher.reason[0]:
                 reason[i] = higher.reason[0]
@@ -162,6 +182,8 @@ def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, 
             values[k][i] = point[k]
         used[i] = H
         below = solved
+        if stuck[i] or slipping[i]:         # a point that is neither leaves the onset as it was
+            onset_open = bool(stuck[i]) or (onset and first_change > change_tol)
     for note in notes:
         log.warning("adaptive harmonics: %s", note)
     return AdaptiveResult(values=values, reason=reason, n_harmonics=used, resolved=resolved, notes=notes)

@@ -89,7 +89,7 @@ def test_adaptive_harmonics_are_recorded_and_leave_quiet_points_bitwise(chain, m
     w_stuck = target_stuck_frequency(structure, contacts, target_hz)
     fixed = run_dnnm(reduced, static, cfg, target_hz, w_stuck)
     monkeypatch.setattr(adaptive, "needs_more_harmonics",
-                        lambda point, previous, tol: previous is None and point["zeta"] > 1e-6)
+                        lambda point, previous, tol, onset: previous is None and point["zeta"] > 1e-6)
     adaptive_ds = run_dnnm(reduced, static, {**cfg, "dnnm": {**cfg["dnnm"], "max_harmonics": 3}},
                            target_hz, w_stuck)
     check_contract(adaptive_ds)
@@ -106,6 +106,45 @@ def test_adaptive_harmonics_are_recorded_and_leave_quiet_points_bitwise(chain, m
     np.testing.assert_allclose(adaptive_ds.energy_damping.values[raised], e_d, rtol=1e-6)
     assert np.all(adaptive_ds.highest_harmonic_energy.values[raised] > 0)      # defined at H = 3
     assert not np.allclose(adaptive_ds.gamma.values[raised], fixed.gamma.values[raised], rtol=1e-6)
+
+
+def test_slip_onset_is_raised_until_it_stops_moving(chain):
+    """The slip onset rule on the real chain (coarse ring, 12 amplitudes, H₀ = 1 up to 3, the AFT samples
+    per harmonic kept): ε_H is undefined at H = 1 and no pair lifts off, so every raise is the onset's.
+    The raised points are the first slipping point above the stuck ones and the next ones up to the first
+    that moved by at most :data:`CHANGE_TOLERANCE` from H = 1 to 3; they carry the fixed H = 3 run's
+    outputs, and every slipping point is then within the tolerance of it, where fixed H = 1 is not."""
+    from ringdamper.nonlinear.adaptive import CHANGE_TOLERANCE, SLIP_ZETA
+
+    cfg, reduced, static, structure, contacts, target_hz = chain
+    w_stuck = target_stuck_frequency(structure, contacts, target_hz)
+
+    def run(H, H_max):
+        dnnm = {**cfg["dnnm"], "n_harmonics": H, "max_harmonics": H_max, "n_time_samples": 32 * H,
+                "n_amplitudes": 12}
+        return run_dnnm(reduced, static, {**cfg, "dnnm": dnnm}, target_hz, w_stuck)
+
+    fixed1, fixed3, adaptive_ds = run(1, 1), run(3, 3), run(1, 3)
+    assert np.all(np.isnan(fixed1.highest_harmonic_energy.values)) and np.all(fixed1.lifting_pairs.values == 0)
+    names = ("omega0", "zeta", "gamma", "q_res_z")
+
+    def change(a, b):                  # largest relative difference of the four outputs, per point
+        return np.max([np.abs(a[k].values / b[k].values - 1) for k in names], axis=0)
+
+    slipping = fixed1.zeta.values > SLIP_ZETA
+    first = int(np.argmax(slipping))
+    assert first > 0 and np.all(slipping[first:]) and not np.any(slipping[:first])
+    moved = change(fixed1, fixed3) > CHANGE_TOLERANCE
+    assert moved[first]                                        # what the rule must fix
+    raised = adaptive_ds.n_harmonics.values == 3
+    end = first + int(np.argmin(moved[first:]))               # the first slipping point that did not move
+    assert end < raised.size - 1 or not moved[end]
+    np.testing.assert_array_equal(np.flatnonzero(raised), np.arange(first, end + 1))
+    assert adaptive_ds.attrs["harmonics_resolved"] == raised.sum()
+    assert np.all(change(adaptive_ds, fixed3)[raised] < 1e-5)     # the H = 3 solutions (ζ to ~1e-6)
+    assert np.all(change(adaptive_ds, fixed3)[slipping] <= CHANGE_TOLERANCE)
+    for k in names + ("status",):                              # the others untouched
+        np.testing.assert_array_equal(adaptive_ds[k].values[~raised], fixed1[k].values[~raised], err_msg=k)
 
 
 def _stuck_mode_of(chain):

@@ -420,7 +420,7 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
                            accept: Callable | None = None, s_start: float | None = None,
                            on_failure: Callable[[], bool] | None = None,
                            jump_mask: np.ndarray | None = None,
-                           max_points: int | None = None) -> NaturalResult:
+                           max_points: int | None = None, floor: float | None = None) -> NaturalResult:
     """:func:`natural`, and where it stops, pseudo-arc-length continuation of ``r(z, s) = 0`` in
     ``x = [z, s]`` from its last accepted point, oriented towards increasing ``s``: it follows the
     branch through folds in ``s`` (where natural continuation must stop). Each remaining grid
@@ -436,7 +436,10 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
     unknowns and the change of ``s`` weigh alike, except the unknowns outside ``jump_mask``, which
     weigh ``FREE_WEIGHT``. ``max_points`` bounds the arc-length points (default
     ``400·max(1, 0.5 / steps.maximum)``, so that a smaller maximum step does not run out of
-    points)."""
+    points). ``floor``: the arc-length part stops where the branch, past a fold, turns back below
+    ``s = floor`` (None: it follows the branch until ``max_points``); a caller that wants the branch
+    through one point continued to values above it passes that point's ``s``: a value reached only
+    after the branch came back past its start lies on another sheet."""
     grid = np.asarray(grid, float)
     out = natural(fun, dfun_ds, z0, grid, scale, steps, tol, max_iter, accept=accept,
                   s_start=s_start, on_failure=on_failure, jump_mask=jump_mask)
@@ -446,7 +449,7 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
     if max_points is None:
         max_points = int(400 * max(1.0, 0.5 / steps.maximum))
     past_fold = NaturalThenArclength(fun, dfun_ds, scale, steps, tol, max_iter, out, int(todo[0]),
-                                     accept, jump_mask)
+                                     accept, jump_mask, floor)
     past_fold.run(on_failure, max_points)
     return out
 
@@ -461,7 +464,8 @@ class NaturalThenArclength:
     bracket on the branch where the solution does not fit it (:meth:`bisect`); :meth:`run` then
     gives the values left unsolved their statuses. State: ``previous``, the last accepted branch
     point; ``next``, the index of the first grid value not yet solved; ``why``, why a grid solve
-    failed ("" if none did)."""
+    failed or the branch turned back below ``floor`` ("" if neither); ``peak``, the largest ``s``
+    reached."""
 
     #: A grid solution is trusted within this many bracket lengths of the secant interpolant (an
     #: arc that turns by θ ≤ ``max_angle`` stays within θ/8 of its chord).
@@ -469,8 +473,9 @@ class NaturalThenArclength:
 
     def __init__(self, fun: Callable, dfun_ds: Callable, scale: Callable, steps: StepControl,
                  tol: float, max_iter: int, out: NaturalResult, first_missing: int,
-                 accept: Callable | None, jump_mask: np.ndarray | None):
+                 accept: Callable | None, jump_mask: np.ndarray | None, floor: float | None = None):
         self.fun, self.dfun_ds, self.scale, self.steps = fun, dfun_ds, scale, steps
+        self.floor = floor
         self.tol, self.max_iter, self.out, self.accept = tol, max_iter, out, accept
         self.first = out.branch[-1]
         self.root_n = np.sqrt(self.first.z.size)
@@ -480,6 +485,7 @@ class NaturalThenArclength:
         self.next = first_missing
         self.previous = np.r_[self.first.z, self.first.s]
         self.why = ""
+        self.peak = self.first.s
 
     def run(self, on_failure: Callable[[], bool] | None, max_points: int) -> None:
         """Arc length from the natural run's last point towards increasing ``s`` until every grid
@@ -518,6 +524,11 @@ class NaturalThenArclength:
             return
         out, grid = self.out, self.out.grid
         out.branch.append(ContinuationPoint(x[-1], x[:-1], payload, 0))
+        self.peak = max(self.peak, x[-1])
+        if self.floor is not None and x[-1] < self.floor:
+            self.why = f"the branch turns back (fold at s={self.peak:.6g}) below s={self.floor:.6g}"
+            self.next = grid.size                            # stop; statuses set by run
+            return
         xa = self.previous
         while self.next < grid.size and xa[-1] < grid[self.next] <= x[-1]:
             k, sk = self.next, grid[self.next]

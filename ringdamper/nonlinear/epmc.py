@@ -400,8 +400,10 @@ def continue_point(backbone: Backbone, j: int, alpha: float, tol: float = 1e-8, 
                    max_arc_points: int | None = None) -> tuple[Backbone | None, str]:
     """Continuation at the truncation of ``backbone`` from its grid point ``j`` to the amplitude
     ``alpha`` (above α_j; ``steps`` and ``max_arc_points`` as in :func:`epmc`): ``(one-point
-    backbone, "")``, or ``(None, why)`` if it does not get there. The problem, gauge position and
-    pinned directions are those of point ``j``; the model is shared with ``backbone``."""
+    backbone, "")``, or ``(None, why)`` if it does not get there, or if the branch folds back below
+    α_j on the way (a value reached after that lies on another sheet of the branch than point ``j``).
+    The problem, gauge position and pinned directions are those of point ``j``; the model is shared
+    with ``backbone``."""
     t0 = time.perf_counter()
     model = backbone.model
     z0 = backbone.state(j)
@@ -412,7 +414,7 @@ def continue_point(backbone: Backbone, j: int, alpha: float, tol: float = 1e-8, 
                                  steps or default_steps(), tol, max_iter,
                                  accept=problem.accept, s_start=np.log(backbone.alpha[j]),
                                  on_failure=problem.on_failure, jump_mask=problem.jump_mask(),
-                                 max_points=max_arc_points)
+                                 max_points=max_arc_points, floor=np.log(backbone.alpha[j]))
     if run.points[0] is None:
         return None, f"continuation at H = {model.H} from alpha = {backbone.alpha[j]:.4g}: {run.reason[0]}"
     return _collect(run, model, np.array([alpha]), problem, time.perf_counter() - t0,

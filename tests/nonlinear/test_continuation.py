@@ -211,3 +211,32 @@ def test_freely_moving_unknowns_do_not_set_the_arc_length(monkeypatch):
         assert ys ** 3 - ys == pytest.approx(grid, abs=1e-9)
         assert np.all(ys[grid > 0.4] > 1 / np.sqrt(3))             # past the fold, on the upper branch
     assert len(weighted.branch) < 0.5 * len(full.branch)
+
+
+def test_arc_length_stops_where_the_branch_turns_back_below_the_floor():
+    """``r = y³ − y − s``: past the fold at s = 2/(3√3) ≈ 0.385 the branch runs back down to
+    s ≈ −0.385 before the second fold takes it up again. With a floor above that (−0.2) the
+    arc-length part stops at the first point below it and says so; with a floor below it (−0.5) the S
+    is followed and every grid value reached, on the same points as without a floor."""
+    import ringdamper.nonlinear.continuation as continuation
+
+    def fun(z, s, jac):
+        y = z[0]
+        return np.array([y ** 3 - y - s]), np.array([[3 * y ** 2 - 1]]) if jac else None, None, 1, None
+
+    grid = np.linspace(-6.0, 6.0, 7)
+
+    def trace(floor):
+        return continuation.natural_then_arclength(
+            fun, lambda z, s: np.array([-1.0]), np.array([-2.0]), grid, lambda z: np.ones(1),
+            continuation.StepControl(0.2, 1e-4, 0.5), 1e-12, 20, max_points=400, floor=floor)
+
+    free, low, high = trace(None), trace(-0.5), trace(-0.2)
+    for run in (free, low):
+        assert np.all(run.status == Status.CONVERGED)
+    assert [p.s for p in low.branch] == [p.s for p in free.branch]
+    reached = high.status == Status.CONVERGED
+    np.testing.assert_array_equal(reached, grid < 0.385)
+    assert "turns back (fold at s=0.38" in high.reason[np.flatnonzero(~reached)[0]]
+    assert high.branch[-1].s < -0.2 < high.branch[-2].s           # stopped at the first point below
+    assert len(high.branch) < len(free.branch)

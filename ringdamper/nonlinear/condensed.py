@@ -462,32 +462,28 @@ class CoreJacobian:
         """The matrix (Fortran order, :func:`ringdamper.nonlinear.jacobian.dense`), in ``out`` if
         given (e.g. the core block of a bordered matrix)."""
         m = self.model
-        p, kc, active = m.p, self.kc, self.active
-        if out is None:
-            J = np.zeros(self.shape, order="F")
-        else:
-            J = out
-            J[...] = 0.0
-        J[np.arange(m.n_d), np.arange(m.n_d)] = 1.0
+        p, kc, active, n_d = m.p, self.kc, self.active, m.n_d
+        J = np.empty(self.shape, order="F") if out is None else out
+        J[:, n_d:] = 0.0                            # explicit columns: each harmonic sets its own block
         JT = J.T                                    # rows of Jᵀ are contiguous in a Fortran-order J
         for h in range(m.H + 1):
             z, S, Cs, sl, rows = self.z[h], m.S[h], m.Cset[h], m.eta_slices[h], m._rows(h)
             PsiC, PsiS = m.PsiC[h], m.PsiS[h]
             if h == 0 and np.isrealobj(PsiC):           # z_0 is real: G_0 in real arithmetic
-                A = np.vstack([(PsiC * (1.0 / z[Cs].real)) @ PsiC.T, PsiS.T])
+                G, PSH = (PsiC * (1.0 / z[Cs].real)) @ PsiC.T, PsiS.T
             else:
-                A = np.vstack([(PsiC * (1.0 / z[Cs])) @ PsiC.conj().T, PsiS.conj().T])   # [G_h; Ψ_Sᴴ]
-            Areal = A.real if h == 0 else _real_rows(A, p)
-            KAT = _apply_contact_jacobian(Areal, kc, m.fourier.slots(h), active, p, transposed=True)
-            nr = rows.stop - rows.start
-            JT[:m.n_d, rows] += KAT[:, :nr]
-            JT[:m.n_d, sl] += KAT[:, nr:]
+                G, PSH = (PsiC * (1.0 / z[Cs])) @ PsiC.conj().T, PsiS.conj().T          # G_h, Ψ_Sᴴ
+            slots = m.fourier.slots(h)
+            for block, dest in ((G, rows), (PSH, sl)):  # the harmonic's contact rows, then explicit rows:
+                real = block.real if h == 0 else real_block(block)   # each entry of their contact columns
+                _apply_contact_jacobian(real, kc, slots, active, p, transposed=True, out=JT[:n_d, dest])
             if h == 0:
                 J[rows, sl] = -PsiS.real
                 J[sl, sl] = np.diag(z[S].real)
             else:
                 J[rows, sl] = -real_block(PsiS)
                 J[sl, sl] = real_block(m.explicit_impedance(h, self.omega, z))
+        J[np.arange(n_d), np.arange(n_d)] += 1.0
         if self.rotation is not None:
             self.rotation.apply(J)
         return J
@@ -549,23 +545,20 @@ def pole_modes(structure: Structure, H: int, lo: float, hi: float) -> list:
     return out
 
 
-def _real_rows(A: np.ndarray, p: int) -> np.ndarray:
-    """Real form of the stacked complex operator ``[G (p×p); Ψ_Sᴴ (s×p)]`` acting on ``(a; b)``
-    slots, with rows ordered ``[G_a; G_b; S_a; S_b]`` to match the unknown layout."""
-    G, P = A[:p], A[p:]
-    return np.vstack([real_block(G), real_block(P)])
-
-
 def _apply_contact_jacobian(A: np.ndarray, kc: np.ndarray, slots: slice, active: np.ndarray,
-                            p: int, transposed: bool = False) -> np.ndarray:
+                            p: int, transposed: bool = False, out: np.ndarray | None = None) -> np.ndarray:
     """``A @ K_c[slots rows, :]`` with ``A`` (R, L·p) over ``(slot in slots, coordinate)`` columns
     and ``K_c`` the block-diagonal AFT Jacobian ``kc`` (np, 3, C, 3, C); inactive pairs skipped.
     ``transposed``: the product's transpose (C·p, R) instead, computed as such (``K_cᵀ Aᵀ`` pair by
-    pair), for accumulation into the rows of a transposed matrix."""
+    pair), for the rows of a transposed matrix. ``out``: where to write the product (e.g. a view of a
+    larger matrix; every entry is set), else a new array."""
     npairs, C = kc.shape[0], kc.shape[2]
     L = slots.stop - slots.start
     R = A.shape[0]
-    out = np.zeros((C, npairs, 3, R) if transposed else (R, C, npairs, 3))
+    result = np.zeros((C * p, R) if transposed else (R, C * p)) if out is None else out
+    out = result.reshape((C, npairs, 3, R) if transposed else (R, C, npairs, 3))   # splits one axis: a view
+    if not np.all(active):
+        out[(slice(None),) * (1 if transposed else 2) + (~active,)] = 0.0
     if np.any(active):
         na = int(active.sum())
         Aq = A.reshape(R, L, npairs, 3)[:, :, active]                               # (R, L, na, 3)
@@ -576,4 +569,4 @@ def _apply_contact_jacobian(A: np.ndarray, kc: np.ndarray, slots: slice, active:
         else:
             product = np.matmul(Aq.transpose(2, 0, 1, 3).reshape(na, R, 3 * L), Kq)
             out[:, :, active] = product.reshape(na, R, 3, C).transpose(1, 3, 0, 2)
-    return out.reshape(C * p, R) if transposed else out.reshape(R, C * p)
+    return result

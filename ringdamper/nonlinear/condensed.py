@@ -74,6 +74,7 @@ import numpy as np
 from ringdamper.nonlinear.elements import Elements
 from ringdamper.nonlinear.fourier import Fourier, real_block, real_vector, to_complex
 from ringdamper.nonlinear.friction import ContactAFT, FrictionContacts
+from ringdamper.nonlinear.receptance import Receptance
 from ringdamper.nonlinear.structure import Structure
 
 
@@ -162,6 +163,9 @@ class CondensedHBM:
         self.PsiS = [m.Psi[:, S] for m, S in zip(self.modal, self.S)]          # explicit
         self.PsiCH = [P.conj().T.copy() for P in self.PsiC]                    # Ψ_Cᴴ
         self.PsiSH = [P.conj().T.copy() for P in self.PsiS]                    # Ψ_Sᴴ
+        self.receptances = [Receptance(m.w2[Cs], P, PH) if h == 0 or not np.any(self.damping[h])
+                            else None for h, (m, Cs, P, PH)
+                            in enumerate(zip(self.modal, self.Cset, self.PsiC, self.PsiCH))]
         self.zero_modes = np.flatnonzero(self.modal[0].zero[self.S[0]])    # positions within S_0
         if self.zero_modes.size:
             PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]
@@ -353,6 +357,15 @@ class CondensedHBM:
         dz_dx = np.full(m.w2.size, -1j * h * omega)
         return z, np.broadcast_to(dz_dw, z.shape), dz_dx
 
+    def receptance(self, h: int, omega: float, xi: float, z: np.ndarray) -> np.ndarray:
+        """``G_h = Ψ_C diag(1/z_C) Ψ_Cᴴ`` at ``(ω, ξ)`` (``z``: the modal impedances there). Where
+        harmonic ``h`` is undamped (and always at h = 0, where ``z_r = ω_r²``), ``z_r = ω_r² − s`` with
+        ``s = (hω)² + i hωξ``, and :class:`ringdamper.nonlinear.receptance.Receptance` sums it."""
+        if self.receptances[h] is not None:
+            return self.receptances[h](h * h * omega * omega + 1j * h * omega * xi if h else 0.0)
+        Cs = self.Cset[h]
+        return (self.PsiC[h] * (1.0 / z[Cs])) @ self.PsiCH[h]
+
     def explicit_impedance(self, h: int, omega: float, z: np.ndarray) -> np.ndarray:
         """Complex matrix of harmonic ``h``'s explicit rows on ``η_S``: ``diag(z_S)`` plus the
         coupling ``i h ω C_off`` (``z``: the modal impedances at ``omega``)."""
@@ -433,7 +446,7 @@ class CoreJacobian:
                  xi: float, rotation: GaugeRotation | None):
         self.model, self.kc, self.active, self.rotation = model, kc, active, rotation
         self.z = [model._modal_impedance(h, omega, xi)[0] for h in range(model.H + 1)]
-        self.omega = omega
+        self.omega, self.xi = omega, xi
         self.shape = (model.n_core, model.n_core)
 
     def matvec(self, v: np.ndarray) -> np.ndarray:
@@ -467,14 +480,10 @@ class CoreJacobian:
         J[:, n_d:] = 0.0                            # explicit columns: each harmonic sets its own block
         JT = J.T                                    # rows of Jᵀ are contiguous in a Fortran-order J
         for h in range(m.H + 1):
-            z, S, Cs, sl, rows = self.z[h], m.S[h], m.Cset[h], m.eta_slices[h], m._rows(h)
-            PsiC, PsiS = m.PsiC[h], m.PsiS[h]
-            if h == 0 and np.isrealobj(PsiC):           # z_0 is real: G_0 in real arithmetic
-                G, PSH = (PsiC * (1.0 / z[Cs].real)) @ PsiC.T, PsiS.T
-            else:
-                G, PSH = (PsiC * (1.0 / z[Cs])) @ PsiC.conj().T, PsiS.conj().T          # G_h, Ψ_Sᴴ
+            z, S, sl, rows, PsiS = self.z[h], m.S[h], m.eta_slices[h], m._rows(h), m.PsiS[h]
+            G = m.receptance(h, self.omega, self.xi, z)
             slots = m.fourier.slots(h)
-            for block, dest in ((G, rows), (PSH, sl)):  # the harmonic's contact rows, then explicit rows:
+            for block, dest in ((G, rows), (m.PsiSH[h], sl)):  # the contact rows, then explicit rows:
                 real = block.real if h == 0 else real_block(block)   # each entry of their contact columns
                 _apply_contact_jacobian(real, kc, slots, active, p, transposed=True, out=JT[:n_d, dest])
             if h == 0:

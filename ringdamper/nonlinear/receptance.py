@@ -16,9 +16,9 @@ Most condensed modes of a Craig–Bampton model lie far above ``hω`` (the campa
 turns their part of ``G`` into ``Σ_{k<K} s^k M_k`` with ``M_k = Ψ_F diag(ω_r^{−2(k+1)}) Ψ_Fᴴ`` formed once;
 each term's remainder is below ``q^K / (1 − q)`` of it, and ``K`` is taken so that this is below
 :data:`TOL` (rounding). The near modes keep the direct sum. An ``s`` for which the stored terms do not
-reach :data:`TOL` gets the direct sum over all modes. On the default ring (p = 210, m = 543, FAR = 10:
-17–41 near modes, q ≈ 0.01, K = 9) a harmonic's receptance takes 0.4–0.5 ms instead of 3.3 ms and agrees
-with the direct sum to 4e-15 of its largest entry.
+reach :data:`TOL` gets the direct sum over all modes. On a campaign ring (a02_001: p = 210, m = 543;
+FAR = 10: 17–41 near modes, q ≈ 0.01, K = 9) a harmonic's receptance takes 0.4–0.5 ms instead of 3.3 ms
+and agrees with the direct sum to 4e-15 of its largest entry.
 """
 from __future__ import annotations
 

@@ -19,7 +19,10 @@ scaled: with ``tol = 1e-8`` the first term is 2e-8, and the second exceeds 1e-6 
 :meth:`Backbone.state`), with the trivial unknowns (unit columns in the core rows: contact slots of
 pairs open over the whole period) eliminated as the Newton does: ``A = J_NN − J_NT J_TN``. κ is
 LAPACK's estimate ``1 / dgecon`` from the LU of ``D_r A D_c`` (Higham's 1-norm estimator, within a
-factor of a few of the exact value).
+factor of a few of the exact value; :meth:`ringdamper.nonlinear.newton.Factorization.condition`). The
+natural continuation forms that LU at every grid value it lands on, for the point's tangent, and keeps
+the estimate (``Backbone.condition``); the points solved otherwise (the grid values past a fold, solved
+from the arc-length branch; a single point solved again at another H) get theirs here.
 
 The points solved by the stuck shortcut (all pairs stick: ``y(α) = (α/α₁) y(α₁)``, same ω and ξ)
 share one Jacobian up to ``J(α) = S_r J(α₁) S_c`` (:func:`ringdamper.nonlinear.epmc._stuck_points`):
@@ -37,11 +40,10 @@ import copy
 import dataclasses
 
 import numpy as np
-import scipy.linalg as sla
-from scipy.linalg.lapack import dgecon
 
 from ringdamper.nonlinear.epmc import Backbone, EPMCProblem
 from ringdamper.nonlinear.jacobian import dense
+from ringdamper.nonlinear.newton import Factorization
 from ringdamper.status import usable_status
 
 #: κ above which rounding alone may move a converged point by more than 1e-6 (relative, scaled
@@ -60,22 +62,8 @@ def equilibrated_condition(J: np.ndarray, trivial: np.ndarray | None, scale: np.
     """κ₁ of ``D_r A D_c`` (module docstring): ``J`` with its trivial unknowns eliminated, columns
     scaled by ``scale``, rows by their largest entry. ``inf`` if a row or the LU is singular. ``J`` is
     overwritten."""
-    n = J.shape[0]
-    T = np.zeros(n, bool) if trivial is None else np.r_[trivial, np.zeros(n - trivial.size, bool)]
-    A = J
-    if T.any():
-        N, Tn = np.flatnonzero(~T), np.flatnonzero(T)
-        A = J[np.ix_(N, N)] - J[np.ix_(N, Tn)] @ J[np.ix_(Tn, N)]
-        scale = scale[N]
-    A *= scale
-    rows = np.max(np.abs(A), axis=1)
-    if not np.all(np.isfinite(A)) or np.any(rows == 0):
-        return np.inf
-    A /= rows[:, None]
-    anorm = np.max(np.sum(np.abs(A), axis=0))
-    lu, _ = sla.lu_factor(A, check_finite=False, overwrite_a=True)
-    rcond, info = dgecon(lu, anorm, norm="1")
-    return 1.0 / rcond if info == 0 and rcond > 0 else np.inf
+    n_core = J.shape[0] if trivial is None else trivial.size
+    return Factorization(J, trivial, n_core, overwrite=True, scale=scale).condition()
 
 
 def point_condition(backbone: Backbone, i: int) -> float:
@@ -88,15 +76,20 @@ def point_condition(backbone: Backbone, i: int) -> float:
 
 
 def backbone_conditions(backbone: Backbone) -> np.ndarray:
-    """κ of every usable point (status 0 or 3) of ``backbone``, NaN elsewhere. The points that are
-    scaled copies of the first (the stuck shortcut's) take its κ. The evaluations run on a shallow copy
-    of the model, so the gauge state they set (pinned and seen rigid-body directions) stays out of
-    ``backbone``, whose model later restarts may use."""
+    """κ of every usable point (status 0 or 3) of ``backbone``, NaN elsewhere: the estimate the
+    continuation made where it factorised the point's Jacobian (``backbone.condition``), else computed
+    here. The points that are scaled copies of the first (the stuck shortcut's) take its κ. The
+    evaluations run on a shallow copy of the model, so the gauge state they set (pinned and seen
+    rigid-body directions) stays out of ``backbone``, whose model later restarts may use."""
     own = dataclasses.replace(backbone, model=copy.copy(backbone.model))
+    known = np.full(backbone.alpha.size, np.nan) if backbone.condition is None else backbone.condition
     kappa = np.full(backbone.alpha.size, np.nan)
     for i in np.flatnonzero(usable_status(np.asarray(backbone.status))):
         shared = i > 0 and np.isfinite(kappa[0]) and _scaled_copy(backbone, 0, i)
-        kappa[i] = kappa[0] if shared else point_condition(own, i)
+        if shared:
+            kappa[i] = kappa[0]
+        else:
+            kappa[i] = known[i] if np.isfinite(known[i]) else point_condition(own, i)
     return reported(kappa)
 
 

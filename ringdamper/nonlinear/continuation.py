@@ -47,8 +47,8 @@ from typing import Any, Callable
 import numpy as np
 
 from ringdamper.nonlinear import krylov
-from ringdamper.nonlinear.jacobian import bordered
-from ringdamper.nonlinear.newton import NewtonResult, linear_solver, newton
+from ringdamper.nonlinear.jacobian import bordered, dense, is_operator
+from ringdamper.nonlinear.newton import Factorization, NewtonResult, linear_solver, newton
 from ringdamper.status import Status
 
 # Weight, in the arc length of :func:`natural_then_arclength`, of the unknowns outside ``jump_mask``
@@ -125,10 +125,15 @@ class StepControl:
 
 @dataclass
 class ContinuationPoint:
+    """An accepted point: parameter ``s``, unknowns ``z``, the problem's evaluation there
+    (``payload``), Newton iterations, and ``condition``, the κ₁ estimate of its equilibrated
+    Jacobian where :func:`natural` factorised it exactly (a grid value; NaN elsewhere)."""
+
     s: float
     z: np.ndarray
     payload: Any
     iterations: int
+    condition: float = np.nan
 
 
 @dataclass
@@ -189,6 +194,14 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
     is the guess there) over the increasing ``grid``, landing exactly on every grid value (so grid
     outputs are converged solutions, not interpolants).
 
+    Tangents: at a grid value from the LU of its Jacobian, equilibrated, whose condition estimate the
+    point keeps (:attr:`ContinuationPoint.condition`); between grid values by GMRES on the corrector's
+    last LU (:func:`ringdamper.nonlinear.newton.linear_solver`). Either way the next corrector starts
+    from the corrector's own chain of LUs, not from the grid value's exact one: handed on, that LU
+    made correctors cheaper, the step control then grew the steps into the stretch where pairs lift
+    off, and one ring of twenty (t036 of the paper design) took twice as long and lost its top point
+    (docs/nonlinear_core.md §4.6).
+
     ``fun(z, s, jacobian) -> (r, J, trivial, n_core, payload)``; ``dfun_ds(z, s)`` is ``∂r/∂s``;
     ``accept(z, payload)`` is called on every accepted point (e.g. to update a gauge);
     ``on_failure()`` after a failed corrector: if it returns True the problem has changed (e.g. a
@@ -214,11 +227,13 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
     mask = None if jump_mask is None else np.r_[jump_mask, True]
     root_n = np.sqrt(z0.size)
     z = res.z
-    fac, tangent = _natural_tangent(fun, dfun_ds, z, s, res.factorization, scale)
+    on_grid = s == grid[0]
+    fac_t, tangent = _natural_tangent(fun, dfun_ds, z, s, res.factorization, scale, exact=on_grid)
+    fac = res.factorization if on_grid else fac_t
     out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
     gi = 0
-    if s == grid[0]:
-        _record(out, 0, s, res, accept)
+    if on_grid:
+        _record(out, 0, s, res, accept, fac_t)
         gi = 1
     elif accept is not None:
         accept(z, res.payload)
@@ -234,16 +249,18 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
                      give_up_at_min_damping=steps.stop_cycling)
         why = res.reason
         if res.converged:
-            fac_t, tangent_t = _natural_tangent(fun, dfun_ds, res.z, s_t, res.factorization, scale)
+            fac_t, tangent_t = _natural_tangent(fun, dfun_ds, res.z, s_t, res.factorization, scale,
+                                                exact=on_grid)
             geometry, fold = _natural_geometry(z, s, tangent, res.z, s_t, tangent_t,
                                                root_n * scale(z), mask)
             why = ("fold in s between the points" if fold else
                    _untrusted(geometry, max_angle, s_t - s <= corner * steps.minimum))
         if not why:
-            s, z, fac, tangent = s_t, res.z, fac_t, tangent_t
+            s, z, tangent = s_t, res.z, tangent_t
+            fac = res.factorization if on_grid else fac_t
             out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
             if on_grid:
-                _record(out, gi, s, res, accept)
+                _record(out, gi, s, res, accept, fac_t)
                 gi += 1
             elif accept is not None:
                 accept(z, res.payload)
@@ -270,16 +287,24 @@ def _natural_geometry(z0, s0, tangent0, z1, s1, tangent1, w, mask):
     return _step_geometry(t0, t1, chord, mask), t1[-1] <= 0
 
 
-def _natural_tangent(fun, dfun_ds, z, s, previous, scale):
-    """Solver of the Jacobian at ``(z, s)`` (:func:`ringdamper.nonlinear.newton.linear_solver`, on
-    the factorisation of the solver ``previous``) and the tangent ``dz/ds = −J⁻¹ ∂r/∂s``."""
+def _natural_tangent(fun, dfun_ds, z, s, previous, scale, exact=False):
+    """Solver of the Jacobian at ``(z, s)`` and the tangent ``dz/ds = −J⁻¹ ∂r/∂s``. The solver is
+    :func:`ringdamper.nonlinear.newton.linear_solver` on the factorisation of the solver ``previous``
+    or, with ``exact``, the LU of the Jacobian itself, equilibrated by the scales ``scale(z)``, which
+    gives the point its condition estimate (:meth:`ringdamper.nonlinear.newton.Factorization.condition`)."""
     _, J, trivial, n_core, _ = fun(z, s, True)
-    fac = linear_solver(J, trivial, n_core, previous, 1.0 / scale(z))
+    if exact:
+        fac = Factorization(dense(J), trivial, n_core, overwrite=is_operator(J), scale=scale(z))
+    else:
+        fac = linear_solver(J, trivial, n_core, previous, 1.0 / scale(z))
     return fac, fac.solve(-dfun_ds(z, s))
 
 
-def _record(out: NaturalResult, i: int, s: float, res: NewtonResult, accept):
-    out.points[i] = ContinuationPoint(s, res.z, res.payload, res.iterations)
+def _record(out: NaturalResult, i: int, s: float, res: NewtonResult, accept, fac=None):
+    """Grid value ``i`` solved: ``res`` at ``s``, with the condition estimate of ``fac``, the exact
+    factorisation of its Jacobian (:func:`_natural_tangent`), if given."""
+    condition = np.nan if fac is None else fac.condition()
+    out.points[i] = ContinuationPoint(s, res.z, res.payload, res.iterations, condition)
     out.status[i], out.reason[i] = Status.CONVERGED, ""
     if accept is not None:
         accept(res.z, res.payload)

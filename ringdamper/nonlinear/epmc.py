@@ -54,7 +54,9 @@ class Backbone:
     :class:`EPMCProblem` need to restart from a point), ``pole_window`` the ``(lo, hi)`` band of
     :func:`pole_modes` that chose its explicit modes and ``drift_tol`` the DRIFT limit (what
     :func:`resolve_point` needs to build the same problem at another H); ``amplitude`` the row
-    ``w`` whose harmonic-1 amplitude α is (None: the modal amplitude)."""
+    ``w`` whose harmonic-1 amplitude α is (None: the modal amplitude); ``condition`` the κ₁
+    estimate of each point's equilibrated Jacobian where the continuation factorised it
+    (:class:`ringdamper.nonlinear.continuation.ContinuationPoint`; NaN elsewhere, None: none)."""
 
     alpha: np.ndarray
     omega: np.ndarray
@@ -75,6 +77,7 @@ class Backbone:
     pole_window: tuple = (0.0, 0.0)
     drift_tol: float = 1e-8
     amplitude: np.ndarray | None = None
+    condition: np.ndarray | None = None
 
     def state(self, i: int) -> np.ndarray:
         """Unknown vector ``z = [y, ω, ξ]`` of grid point ``i``; sets the model's pinned
@@ -463,12 +466,13 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall, window
     eta = [np.full((n, mh.w2.size), np.nan, complex) for mh in model.modal]
     pinned = [np.zeros((model.zero_modes.size, 0))] * n
     iters = np.zeros(n, int)
+    condition = nan.copy()
     status, reason = run.status.copy(), list(run.reason)
     for i, pt in enumerate(run.points):
         if pt is None:
             continue
         ev = pt.payload
-        omega[i], xi[i], iters[i] = pt.z[-2], pt.z[-1], pt.iterations
+        omega[i], xi[i], iters[i], condition[i] = pt.z[-2], pt.z[-1], pt.iterations, pt.condition
         d[i], lam[i], pinned[i] = ev.d, ev.lam, ev.gauge
         for h in range(model.H + 1):
             eta[h][i] = ev.eta[h]
@@ -482,4 +486,4 @@ def _collect(run, model: CondensedHBM, alpha, problem: EPMCProblem, wall, window
                     reason=reason, iterations=iters, d=d, lam=lam, eta=eta, pinned=pinned,
                     drift=drift, branch=branch, model=model, phase_index=problem.phase_index,
                     wall_time=wall, pole_window=tuple(window), drift_tol=problem.drift_tol,
-                    amplitude=problem.amplitude)
+                    amplitude=problem.amplitude, condition=condition)

@@ -23,6 +23,7 @@ from typing import Any, Callable
 
 import numpy as np
 import scipy.linalg as sla
+from scipy.linalg.lapack import dgecon
 
 from ringdamper.nonlinear import krylov
 from ringdamper.nonlinear.jacobian import dense, is_operator
@@ -32,9 +33,15 @@ from ringdamper.nonlinear.krylov import LaggedSolver
 class Factorization:
     """LU of ``J`` after eliminating the trivial unknowns ``T`` (columns ``e_i`` in the first
     ``n_core`` rows): ``x_T = b_T − J[T, N] x_N`` and the Schur system on the other unknowns.
-    ``overwrite``: ``J`` is a temporary the LU may overwrite (no copy of the matrix)."""
+    ``overwrite``: ``J`` is a temporary the LU may overwrite (no copy of the matrix).
 
-    def __init__(self, J: np.ndarray, trivial: np.ndarray | None, n_core: int, overwrite: bool = False):
+    ``scale`` (the unknowns' convergence scales): the Schur matrix ``A`` is factorised equilibrated,
+    ``D_r A D_c`` with ``D_c = diag(scale)`` and ``D_r`` one over each row's largest entry of
+    ``A D_c``, and :meth:`condition` estimates κ₁ of that matrix
+    (:mod:`ringdamper.nonlinear.conditioning`); the solves are those of ``A``."""
+
+    def __init__(self, J: np.ndarray, trivial: np.ndarray | None, n_core: int, overwrite: bool = False,
+                 scale: np.ndarray | None = None):
         n = self.n = J.shape[0]
         T = np.zeros(n, bool) if trivial is None else np.r_[trivial, np.zeros(n - trivial.size, bool)]
         self.T, self.N = np.flatnonzero(T), np.flatnonzero(~T)
@@ -45,6 +52,10 @@ class Factorization:
         A = J.T[np.ix_(self.N, self.N)].T if self.T.size else J        # Fortran order: LU in place
         if self.T.size and extra.size:
             A[self.extra_pos] -= self.JXT @ self.JTN
+        self.rows = self.columns = None
+        if scale is not None:
+            A = A if overwrite or A is not J else A.copy(order="F")
+            self.rows, self.columns, self.norm = _equilibrate(A, np.asarray(scale, float)[self.N])
         self.lu = sla.lu_factor(A, check_finite=False, overwrite_a=overwrite or A is not J)
 
     @property
@@ -56,10 +67,36 @@ class Factorization:
         bN = b[self.N].copy()
         if self.T.size and self.extra_pos.size:
             bN[self.extra_pos] -= self.JXT @ b[self.T]
+        if self.rows is not None:
+            bN *= self.rows
         x = np.empty_like(b)
-        x[self.N] = sla.lu_solve(self.lu, bN, check_finite=False)
+        xN = sla.lu_solve(self.lu, bN, check_finite=False)
+        x[self.N] = xN if self.columns is None else xN * self.columns
         x[self.T] = b[self.T] - self.JTN @ x[self.N]
         return x
+
+    def condition(self) -> float:
+        """κ₁ of the equilibrated matrix (LAPACK's ``dgecon`` estimate from the LU, Higham's 1-norm
+        estimator); ``inf`` if it is singular or has a zero or non-finite row. Needs ``scale``."""
+        if self.rows is None:
+            raise ValueError("condition: the factorisation was not equilibrated (pass scale)")
+        if not np.isfinite(self.norm):
+            return np.inf
+        rcond, info = dgecon(self.lu[0], self.norm, norm="1")
+        return 1.0 / rcond if info == 0 and rcond > 0 else np.inf
+
+
+def _equilibrate(A: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+    """Scale ``A`` in place to ``D_r A D_c`` (``D_c = diag(scale)``, ``D_r``: one over each row's
+    largest entry of ``A D_c``); returns the diagonals of ``D_r`` and ``D_c`` and the 1-norm of the
+    result (``inf`` where a row vanishes or is not finite: that row is left unscaled)."""
+    A *= scale
+    top = np.max(np.abs(A), axis=1)
+    bad = ~(np.isfinite(top) & (top > 0))
+    rows = 1.0 / np.where(bad, 1.0, top)
+    A *= rows[:, None]
+    norm = np.inf if np.any(bad) else float(np.max(np.sum(np.abs(A), axis=0)))
+    return rows, scale, norm
 
 
 def factorize(J, trivial: np.ndarray | None, n_core: int) -> Factorization:

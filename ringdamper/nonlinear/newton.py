@@ -23,7 +23,7 @@ from typing import Any, Callable
 
 import numpy as np
 import scipy.linalg as sla
-from scipy.linalg.lapack import dgecon
+from scipy.linalg.lapack import dgecon, dlange
 
 from ringdamper.nonlinear import krylov
 from ringdamper.nonlinear.jacobian import dense, is_operator
@@ -91,12 +91,11 @@ def _equilibrate(A: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, np.ndarr
     largest entry of ``A D_c``); returns the diagonals of ``D_r`` and ``D_c`` and the 1-norm of the
     result (``inf`` where a row vanishes or is not finite: that row is left unscaled)."""
     A *= scale
-    top = np.max(np.abs(A), axis=1)
+    top = np.maximum(np.max(A, axis=1), -np.min(A, axis=1))       # max |A_ij| without a temporary
     bad = ~(np.isfinite(top) & (top > 0))
     rows = 1.0 / np.where(bad, 1.0, top)
     A *= rows[:, None]
-    norm = np.inf if np.any(bad) else float(np.max(np.sum(np.abs(A), axis=0)))
-    return rows, scale, norm
+    return rows, scale, np.inf if np.any(bad) else float(dlange("1", A))
 
 
 def factorize(J, trivial: np.ndarray | None, n_core: int) -> Factorization:

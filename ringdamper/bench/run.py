@@ -1,7 +1,9 @@
 """Benchmarks (``make bench``): wall time, peak memory and sizes of each stage, written to files.
 
 Speed is measured here, never asserted in tests (docs/design.md §8). Each benchmark runs in its own process
-so that peak memory (ru_maxrss) belongs to it alone.
+so that peak memory (ru_maxrss) belongs to it alone, on one core as a campaign job does (Snakemake gives a
+one-thread rule ``OMP_NUM_THREADS=1`` and its kin): :data:`ONE_CORE` sets the BLAS threads to 1 unless the
+caller's environment chose them.
 """
 
 from __future__ import annotations
@@ -9,6 +11,7 @@ from __future__ import annotations
 import argparse
 import json
 import multiprocessing as mp
+import os
 import platform
 import resource
 import time
@@ -240,6 +243,10 @@ def _run_one(name, config, queue):
     queue.put(result)
 
 
+#: the thread counts a benchmark process starts with (where the environment does not set them): one core
+ONE_CORE = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+
+
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--out", default="results/benchmarks")
@@ -249,6 +256,8 @@ def main(argv=None) -> None:
     config = load_config(args.config) if args.config else load_config()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    for var, value in ONE_CORE.items():               # read by the spawned processes' BLAS
+        os.environ.setdefault(var, value)
     ctx = mp.get_context("spawn")
     for name in args.only or BENCHMARKS:
         queue = ctx.Queue()
@@ -256,6 +265,7 @@ def main(argv=None) -> None:
         proc.start()
         result = queue.get()
         proc.join()
-        result["machine"] = {"cpus": mp.cpu_count(), "python": platform.python_version()}
+        result["machine"] = {"cpus": mp.cpu_count(), "python": platform.python_version(),
+                             "blas_threads": os.environ["OPENBLAS_NUM_THREADS"]}
         (out / f"{name}.json").write_text(json.dumps(result, indent=2))
         print(f"{name}: {json.dumps(result)}")

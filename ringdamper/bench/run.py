@@ -2,8 +2,8 @@
 
 Speed is measured here, never asserted in tests (docs/design.md §8). Each benchmark runs in its own process
 so that peak memory (ru_maxrss) belongs to it alone, on one core as a campaign job does (Snakemake gives a
-one-thread rule ``OMP_NUM_THREADS=1`` and its kin): :data:`ONE_CORE` sets the BLAS threads to 1 unless the
-caller's environment chose them.
+one-thread rule ``OMP_NUM_THREADS=1`` and its kin): :func:`main` sets those variables
+(:data:`ringdamper.workers.THREAD_VARIABLES`) to 1 unless the caller's environment chose them.
 """
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ import numpy as np
 
 from ringdamper.config import load_config
 from ringdamper.status import usable_status
+from ringdamper.workers import THREAD_VARIABLES
 
 
 def _fe_chain(config: dict) -> dict:
@@ -243,10 +244,6 @@ def _run_one(name, config, queue):
     queue.put(result)
 
 
-#: the thread counts a benchmark process starts with (where the environment does not set them): one core
-ONE_CORE = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
-
-
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--out", default="results/benchmarks")
@@ -256,8 +253,8 @@ def main(argv=None) -> None:
     config = load_config(args.config) if args.config else load_config()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    for var, value in ONE_CORE.items():               # read by the spawned processes' BLAS
-        os.environ.setdefault(var, value)
+    for var in THREAD_VARIABLES:                      # read by the spawned processes' BLAS: one core
+        os.environ.setdefault(var, "1")
     ctx = mp.get_context("spawn")
     for name in args.only or BENCHMARKS:
         queue = ctx.Queue()

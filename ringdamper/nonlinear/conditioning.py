@@ -88,8 +88,10 @@ def backbone_conditions(backbone: Backbone) -> np.ndarray:
         shared = i > 0 and np.isfinite(kappa[0]) and _scaled_copy(backbone, 0, i)
         if shared:
             kappa[i] = kappa[0]
+        elif np.isfinite(known[i]):
+            kappa[i] = known[i]
         else:
-            kappa[i] = known[i] if np.isfinite(known[i]) else point_condition(own, i)
+            kappa[i] = point_condition(own, i)
     return reported(kappa)
 
 

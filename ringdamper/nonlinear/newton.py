@@ -55,7 +55,8 @@ class Factorization:
         self.rows = self.columns = None
         if scale is not None:
             A = A if overwrite or A is not J else A.copy(order="F")
-            self.rows, self.columns, self.norm = _equilibrate(A, np.asarray(scale, float)[self.N])
+            self.columns = np.asarray(scale, float)[self.N]
+            self.rows, self.norm = _equilibrate(A, self.columns)
         self.lu = sla.lu_factor(A, check_finite=False, overwrite_a=overwrite or A is not J)
 
     @property
@@ -86,16 +87,16 @@ class Factorization:
         return 1.0 / rcond if info == 0 and rcond > 0 else np.inf
 
 
-def _equilibrate(A: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+def _equilibrate(A: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, float]:
     """Scale ``A`` in place to ``D_r A D_c`` (``D_c = diag(scale)``, ``D_r``: one over each row's
-    largest entry of ``A D_c``); returns the diagonals of ``D_r`` and ``D_c`` and the 1-norm of the
-    result (``inf`` where a row vanishes or is not finite: that row is left unscaled)."""
+    largest entry of ``A D_c``); returns the diagonal of ``D_r`` and the 1-norm of the result
+    (``inf`` where a row vanishes or is not finite: that row is left unscaled)."""
     A *= scale
     top = np.maximum(np.max(A, axis=1), -np.min(A, axis=1))       # max |A_ij| without a temporary
     bad = ~(np.isfinite(top) & (top > 0))
     rows = 1.0 / np.where(bad, 1.0, top)
     A *= rows[:, None]
-    return rows, scale, np.inf if np.any(bad) else float(dlange("1", A))
+    return rows, np.inf if np.any(bad) else float(dlange("1", A))
 
 
 def factorize(J, trivial: np.ndarray | None, n_core: int) -> Factorization:

@@ -24,7 +24,8 @@ RTOL = 1e-6
 #: kernels ≤ 3e-18 measured; ξ converges relative to ω, not to itself); slipping points have ζ > 1e-6
 ZETA_ATOL = 1e-12
 #: candidate kernels, in order of preference; the test takes the first two this machine's OpenBLAS loads
-#: as asked (a kernel the CPU lacks falls back to another)
+#: as asked and runs (a kernel the CPU lacks falls back to another, or kills the process at its first
+#: instruction the CPU lacks)
 CANDIDATES = ("SkylakeX", "Haswell", "Sandybridge", "Nehalem")
 #: the coarse default ring and hard rings of the paper design (ringdamper.bench.dnnm.HARD_RINGS) that have
 #: status-3 points and lift-off on the coarse mesh at the campaign's dNNM settings
@@ -56,16 +57,18 @@ def _child_env(coretype: str) -> dict:
 
 
 def _loaded_kernel(coretype: str) -> str:
-    code = ("import numpy, scipy.linalg, threadpoolctl; print(sorted({i['architecture'] for i in "
+    """The kernel OpenBLAS loads for ``coretype``, once it has run a product and an LU with it ("" if the
+    process dies: OpenBLAS loads a kernel the CPU lacks when asked, whose first instruction then kills it)."""
+    code = ("import numpy, scipy.linalg, threadpoolctl; a = numpy.random.default_rng(0).random((300, 300)); "
+            "scipy.linalg.lu_factor(a @ a); print(sorted({i['architecture'] for i in "
             "threadpoolctl.threadpool_info() if i['internal_api'] == 'openblas'}))")
-    run = subprocess.run([sys.executable, "-c", code], env=_child_env(coretype), capture_output=True, text=True,
-                         check=True)
-    return run.stdout.strip()
+    run = subprocess.run([sys.executable, "-c", code], env=_child_env(coretype), capture_output=True, text=True)
+    return run.stdout.strip() if run.returncode == 0 else ""
 
 
 @pytest.fixture(scope="module")
 def kernels():
-    """The first two :data:`CANDIDATES` that load as themselves (numpy's and scipy's OpenBLAS alike)."""
+    """The first two :data:`CANDIDATES` that load as themselves (numpy's and scipy's OpenBLAS alike) and run."""
     chosen = [c for c in CANDIDATES if _loaded_kernel(c) == str([c])][:2]
     if len(chosen) < 2:
         pytest.skip(f"this OpenBLAS runs fewer than two of {CANDIDATES}")

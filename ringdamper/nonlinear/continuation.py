@@ -30,14 +30,15 @@ multiplied by ``min(grow, turn/θ)`` when the corrector was cheap (effort ≤ ``
 ``hard``), never below half (so the tangent turns by about ``turn`` per step, whatever the
 initial and maximum steps). A corrector is a failure once it has used
 :attr:`StepControl.corrector` fresh Jacobians without converging (fail fast: a smaller step is
-cheaper than a long Newton far from the branch), and so is one whose damped Newton cycles between
-contact states (:attr:`StepControl.stop_cycling`: a second step at the minimum damping, see
-:func:`ringdamper.nonlinear.newton.newton`). ``jump_mask`` restricts the geometry to the unknowns that identify
-the branch (the EPMC leaves out the mean values, which move freely where the last contact
-holding a rigid-body motion lets go). Failures never raise: they end the run with a status
-(:class:`ringdamper.status.Status`). A natural step that ends between two grid values may stop its
-corrector earlier (:attr:`StepControl.between`): such a point carries only the predictor and the
-next step's geometry; every grid value is solved to the run's tolerance.
+cheaper than a long Newton far from the branch), and so is one whose damped Newton step needs a
+damping ``λ ≤`` :attr:`StepControl.give_up_damping` (its predictor lies outside the corrector's
+region of contraction, see :func:`ringdamper.nonlinear.newton.newton`). ``jump_mask`` restricts
+the geometry to the unknowns that identify the branch (the EPMC leaves out the mean values, which
+move freely where the last contact holding a rigid-body motion lets go). Failures never raise:
+they end the run with a status (:class:`ringdamper.status.Status`). A natural step that ends
+between two grid values may stop its corrector earlier (:attr:`StepControl.between`): such a point
+carries only the predictor and the next step's geometry; every grid value is solved to the run's
+tolerance.
 """
 from __future__ import annotations
 
@@ -57,6 +58,12 @@ from ringdamper.status import Status
 # drift and the geometry tests, which look at the other unknowns, see noise.
 FREE_WEIGHT = 0.3
 
+#: damping λ of a corrector's Newton step at or below which the corrector fails and its step is
+#: halved (:attr:`StepControl.give_up_damping`): on the hard rings of the campaigns 1/16 cuts the fresh
+#: Jacobians by a third, 1/8 and 1/4 lose top points and 1/64 saves less
+#: (docs/nonlinear_core.md §4.1)
+GIVE_UP_DAMPING = 1.0 / 16
+
 #: largest angle [rad] by which the corrector's error at a point between grid values may tilt the
 #: chord of its step (:meth:`StepControl.corrector_tolerance`)
 BETWEEN_PER_STEP = 1e-3
@@ -68,8 +75,9 @@ class StepControl:
     angle between the tangents of successive points (the step follows the curvature); a step
     whose tangent turns by more than twice that is rejected and halved (module docstring).
     ``between``: looser corrector tolerance of the natural steps that end between grid values
-    (:meth:`corrector_tolerance`; None: the run's tolerance everywhere). ``stop_cycling``: a
-    corrector whose damped Newton cycles fails its step at once (module docstring).
+    (:meth:`corrector_tolerance`; None: the run's tolerance everywhere). ``give_up_damping``: a
+    corrector whose damped Newton step needs ``λ`` at or below it fails its step at once (module
+    docstring; None: only :attr:`corrector` ends it).
     ``tangent_rtol``: accuracy (scaled 2-norm) of the arc-length tangents that GMRES solves on a
     lagged LU (:mod:`ringdamper.nonlinear.krylov`)."""
 
@@ -82,7 +90,7 @@ class StepControl:
     turn: float = 0.1
     corrector: int | None = None  # fresh Jacobians of a corrector before its step is rejected (None: max_iter)
     between: float | None = None  # corrector tolerance between grid values (None: the run's tol)
-    stop_cycling: bool = True     # a corrector whose damped Newton cycles fails its step at once
+    give_up_damping: float | None = GIVE_UP_DAMPING  # a corrector that needs damping this deep fails its step
     tangent_rtol: float = krylov.RTOL  # accuracy of arc-length tangents by GMRES on a lagged LU
 
     def __post_init__(self):
@@ -94,6 +102,9 @@ class StepControl:
                              f"{self.minimum}")
         if not 0 < self.turn < np.pi / 4:
             raise ValueError(f"StepControl: turn must lie in (0, pi/4) rad, got {self.turn}")
+        if self.give_up_damping is not None and not 0 < self.give_up_damping < 1:
+            raise ValueError(f"StepControl: give_up_damping must lie in (0, 1) or be None, got "
+                             f"{self.give_up_damping}")
         if self.corrector is not None and self.corrector < 1:
             raise ValueError(f"StepControl: corrector must be >= 1 fresh Jacobians, got {self.corrector}")
 
@@ -246,7 +257,7 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
         z_pred = z + (s_t - s) * tangent
         res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale,
                      steps.corrector_tolerance(tol, s_t - s, on_grid), corrector, factorization=fac,
-                     give_up_at_min_damping=steps.stop_cycling)
+                     give_up_damping=steps.give_up_damping)
         why = res.reason
         if res.converged:
             fac_t, tangent_t = _natural_tangent(fun, dfun_ds, res.z, s_t, res.factorization, scale,
@@ -370,7 +381,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
             return np.r_[r, plane @ (zz - zp)], Jb, trivial, n_core, payload
 
         res = newton(on_plane, zp, lambda _: scale, tol, corrector, factorization=fac,
-                     give_up_at_min_damping=steps.stop_cycling)
+                     give_up_damping=steps.give_up_damping)
         if not res.converged:
             return res, None, None, 0.0, res.reason
         chord = (res.z - z) / scale

@@ -134,7 +134,7 @@ class NewtonResult:
 def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarray],
            tol: float = 1e-10, max_iter: int = 20, factorization: Factorization | None = None,
            theta_max: float = 0.5, chord_budget: int = 12,
-           lambda_min: float = 1.0 / 256, give_up_at_min_damping: bool = False) -> NewtonResult:
+           lambda_min: float = 1.0 / 256, give_up_damping: float | None = None) -> NewtonResult:
     """Newton's method with Jacobian reuse and damping for ``r(z) = 0``.
 
     ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)`` (``J`` None when not requested).
@@ -152,14 +152,13 @@ def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarr
       ``J⁻¹ r(z + λδz)`` is shorter than ``(1 − λ/4) |δz|`` (natural monotonicity test), else λ
       is halved down to ``lambda_min``. This breaks the cycles plain Newton falls into on the
       piecewise-linear AFT residual near stick–slip transitions.
-    * ``give_up_at_min_damping``: the second damped step that needs ``lambda_min`` ends the run
-      unconverged (Deuflhard's failure criterion, with one second chance). A Newton direction that
-      does not pass the monotonicity test even at ``lambda_min`` means that the linear model fails
-      in every neighbourhood of the iterate (a kink of the piecewise-linear AFT residual); the tiny
-      step it takes sometimes crosses the kink, after which Newton converges, but a second such
-      step means the iterations cycle between contact states until ``max_iter`` is spent. For the
-      predictor–corrector steps, which halve the step on failure: on the slowest rings of the
-      campaign most failing correctors end so (docs/nonlinear_core.md §4.1).
+    * ``give_up_damping``: the first damped step that needs ``λ ≤ give_up_damping`` ends the run
+      unconverged (Deuflhard's failure criterion, at a raised floor). For the predictor–corrector
+      steps, which halve the step on failure: a Newton direction that passes the monotonicity test
+      only for so short a step means that the predictor lies outside the corrector's region of
+      contraction (mostly across a kink of the piecewise-linear AFT residual, where the damped
+      iterations creep and cycle between contact states); a halved step, whose predictor lies
+      closer, is cheaper than creeping on (docs/nonlinear_core.md §4.1).
 
     ``max_iter`` bounds the Newton (fresh Jacobian) iterations; all iterations together are
     bounded by ``4 max_iter``. The decisions depend only on the iterates (no timing), so runs
@@ -167,13 +166,14 @@ def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarr
     """
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         res = _iterate(fun, np.array(z0, float), scale, tol, max_iter, factorization,
-                       theta_max, chord_budget, lambda_min, give_up_at_min_damping)
+                       theta_max, chord_budget, lambda_min, give_up_damping)
     res.effort = res.jacobians + res.iterations / chord_budget
     return res
 
 
 def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_min, give_up):
-    n_jac = n_newton = it = n_min = 0
+    n_jac = n_newton = it = 0
+    floor = lambda_min if give_up is None else max(lambda_min, give_up)   # the run ends below give_up
     fresh = fac is None
     fac = None if fresh else fac.factorization       # chord steps with an LU
     ev = fun(z, fresh)
@@ -211,13 +211,12 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_
                 trial = fun(z + lam * dz, False)
                 corr = _correction(fac, trial[0])
                 bar = np.max(np.abs(corr) / sc)
-                if bar <= (1.0 - lam / 4) * step or lam <= lambda_min:
+                if bar <= (1.0 - lam / 4) * step or lam <= floor:
                     break
                 lam *= 0.5
-            n_min += lam <= lambda_min
-            if give_up and n_min >= 2:
+            if give_up is not None and lam <= give_up:
                 return NewtonResult(z, False, it, payload, fac,
-                                    f"damping at its minimum {lambda_min:g} (Newton cycles)", n_jac)
+                                    f"damped step of {lam:g} <= {give_up:g} (outside Newton's contraction)", n_jac)
             z, ev, dz, fresh = z + lam * dz, trial, corr, lam < 1.0
             continue
         trial = fun(z + dz, False)                   # chord step

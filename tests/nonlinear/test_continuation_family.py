@@ -126,9 +126,9 @@ def test_step_control_refuses_bad_settings(kw, field):
 @pytest.mark.parametrize("seed", [2, 45])
 def test_fail_fast_correctors_keep_the_branch_with_fewer_factorisations(seed, monkeypatch):
     """A corrector still unconverged after ``StepControl.corrector`` fresh Jacobians, or whose damped
-    Newton cycles (``StepControl.stop_cycling``), fails its step, which is halved, instead of running
-    on to ``max_iter`` (20). On chains of the family whose correctors fail on the way, the EPMC's
-    default steps (both rules) trace the backbone of the same steps without them, value for value
+    Newton step needs damping at or below ``StepControl.give_up_damping``, fails its step, which is
+    halved, instead of running on to ``max_iter`` (20). On chains of the family whose correctors fail
+    on the way, the EPMC's default steps (both rules) trace the backbone of the same steps without them, value for value
     (without rigid-body modes to pin, a failed corrector leaves nothing behind), with fewer LU
     factorisations."""
     count = [0]
@@ -146,7 +146,7 @@ def test_fail_fast_correctors_keep_the_branch_with_fewer_factorisations(seed, mo
         count[0] = 0
         steps = epmc_module.default_steps()
         if not limit:
-            steps = dataclasses.replace(steps, corrector=None, stop_cycling=False)
+            steps = dataclasses.replace(steps, corrector=None, give_up_damping=None)
         bb = epmc(st, c, alpha, steps=steps, **OPTIONS)
         runs[limit] = bb, count[0]
     (fast, n_fast), (full, n_full) = runs[True], runs[False]

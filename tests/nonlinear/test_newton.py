@@ -1,6 +1,6 @@
-"""Newton's failure criterion at the minimum damping: a corrector that cycles between the sides of
-a kink gives up after its second damped step at ``lambda_min`` instead of spending its whole budget;
-a run that converges is untouched by the option."""
+"""Newton's failure criterion at a raised damping floor: a corrector that cycles between the sides of
+a kink gives up at its first damped step that needs ``λ <= give_up_damping`` instead of spending its
+whole budget; a run whose damped steps stay above the floor is untouched by the option."""
 import numpy as np
 
 from ringdamper.nonlinear.newton import newton
@@ -22,20 +22,22 @@ def unit_scale(z):
     return np.ones_like(z)
 
 
-def test_cycling_newton_gives_up_at_its_second_minimum_damping():
-    for start, jacobians in ((1.0, 3), (0.0, 2)):         # from 1: a step of 1/2 first, then two at 1/256
-        given = newton(kink_without_root, np.array([start]), unit_scale, 1e-10, 20,
-                       give_up_at_min_damping=True)
-        assert not given.converged and "damping at its minimum" in given.reason
+FLOOR = 1.0 / 16
+
+
+def test_cycling_newton_gives_up_at_its_first_step_below_the_floor():
+    for start, jacobians in ((1.0, 2), (0.0, 1)):         # from 1: a step of 1/2 first, then one at 1/16
+        given = newton(kink_without_root, np.array([start]), unit_scale, 1e-10, 20, give_up_damping=FLOOR)
+        assert not given.converged and "outside Newton's contraction" in given.reason
         assert given.jacobians == jacobians
         spent = newton(kink_without_root, np.array([start]), unit_scale, 1e-10, 20)
         assert not spent.converged and spent.jacobians > 20          # the whole budget
 
 
 def test_converging_newton_is_untouched_by_the_option():
-    for start in (0.5, 3.0):                                  # undamped, and damped steps
+    for start in (0.5, 3.0):                                  # undamped, and a first step damped to 1/4
         plain = newton(arctan, np.array([start]), unit_scale, 1e-12, 20)
-        given = newton(arctan, np.array([start]), unit_scale, 1e-12, 20, give_up_at_min_damping=True)
+        given = newton(arctan, np.array([start]), unit_scale, 1e-12, 20, give_up_damping=FLOOR)
         assert plain.converged and given.converged and abs(plain.z[0]) < 1e-11
         assert np.array_equal(plain.z, given.z) and plain.jacobians == given.jacobians
         assert plain.iterations == given.iterations

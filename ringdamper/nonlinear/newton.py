@@ -173,7 +173,7 @@ def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarr
 
 def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_min, give_up):
     n_jac = n_newton = it = 0
-    floor = lambda_min if give_up is None else max(lambda_min, give_up)   # the run ends below give_up
+    floor = lambda_min if give_up is None else max(lambda_min, give_up)   # the run ends at give_up
     fresh = fac is None
     fac = None if fresh else fac.factorization       # chord steps with an LU
     ev = fun(z, fresh)

@@ -117,7 +117,9 @@ def test_arclength_refuses_a_parallel_branch_at_every_step_size():
 @pytest.mark.parametrize("kw, field", [(dict(initial=1e-5, minimum=1e-4, maximum=0.5), "minimum"),
                                        (dict(initial=0.2, minimum=1e-4, maximum=1e-5), "maximum"),
                                        (dict(initial=0.2, minimum=1e-4, maximum=0.5, turn=1.0), "turn"),
-                                       (dict(initial=0.2, minimum=1e-4, maximum=0.5, corrector=0), "corrector")])
+                                       (dict(initial=0.2, minimum=1e-4, maximum=0.5, corrector=0), "corrector"),
+                                       (dict(initial=0.2, minimum=1e-4, maximum=0.5, give_up_damping=1.0),
+                                        "give_up_damping")])
 def test_step_control_refuses_bad_settings(kw, field):
     with pytest.raises(ValueError, match=field):
         StepControl(**kw)

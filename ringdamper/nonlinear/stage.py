@@ -40,7 +40,13 @@ ARC_POINTS = 100
 
 def structure_from_reduced(reduced: xr.Dataset, n_harmonics: int, field: str = "dnnm.n_harmonics") -> Structure:
     """Per-harmonic modal data of ``reduced.nc`` as a cyclic :class:`Structure` (h = 0..H); ``field``
-    names the setting that asked for H in the error when reduced.nc holds fewer harmonics."""
+    names the setting that asked for H in the error when reduced.nc holds fewer harmonics.
+
+    The shapes are taken C-ordered whatever the dataset's memory layout (the reduction's own
+    dataset holds strided views, one read from reduced.nc contiguous arrays): BLAS rounds a product
+    by the layout of its operands, and the held points at the top of the amplitude grid
+    (docs/nonlinear_core.md §4.3) amplify that rounding into another path, so the stage must
+    compute the same arithmetic from either."""
     H = int(n_harmonics)
     available = int(reduced.sizes["harmonic"]) - 1
     if H > available:
@@ -50,15 +56,19 @@ def structure_from_reduced(reduced: xr.Dataset, n_harmonics: int, field: str = "
     for h in range(H + 1):
         r = reduced.isel(harmonic=h)
         w2 = r.omega2.values
-        contact = r.contact_shape_real.values + 1j * r.contact_shape_imag.values   # (mode, pair, dir)
+        contact = _c_ordered(r.contact_shape_real) + 1j * _c_ordered(r.contact_shape_imag)  # (mode, pair, dir)
         psi = contact.reshape(len(w2), -1).T                                       # (3 pairs, mode)
-        res = r.response_shape_real.values + 1j * r.response_shape_imag.values
+        res = _c_ordered(r.response_shape_real) + 1j * _c_ordered(r.response_shape_imag)
         if h == 0:
             psi, res = psi.real, res.real
         force = np.conj(res) if h == 1 else np.zeros_like(res)
         data.append(HarmonicData(M=np.eye(len(w2)), K=np.diag(w2), B=psi, response=res, force=force))
     return Structure(data, n_sectors=int(reduced.attrs["n_sectors"]),
                      engine_order=int(reduced.attrs["engine_order"]))
+
+
+def _c_ordered(variable: xr.DataArray) -> np.ndarray:
+    return np.ascontiguousarray(variable.values)
 
 
 def contacts_from_static(static: xr.Dataset, contact_cfg: dict, law: str = "jenkins") -> FrictionContacts:

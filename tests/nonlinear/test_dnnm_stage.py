@@ -4,7 +4,7 @@ import pytest
 
 from ringdamper.fem.model import build_model
 from ringdamper.geometry.sector import build_sector
-from ringdamper.io import check_contract
+from ringdamper.io import check_contract, read_netcdf
 from ringdamper.nonlinear import krylov
 from ringdamper.nonlinear.epmc import epmc, linear_limit, stick_limit
 from ringdamper.nonlinear.stage import (
@@ -57,6 +57,21 @@ def test_linear_limit_and_energy_balance(chain):
     assert np.all(ds.gamma.values[slipping] > 0)
     # softening: the frequency never rises above the stuck one along the backbone
     assert np.all(ds.frequency.values[ok] <= ds.frequency.values[0] * (1 + 1e-9))
+
+
+def test_structure_is_the_same_arithmetic_from_the_reduction_and_from_its_file(chain, tmp_path):
+    """The reduction's dataset holds strided views, reduced.nc read back contiguous arrays; BLAS
+    rounds by the operands' layout, so the stage takes both to the same arrays, value and layout
+    (the bench runs on the first, the campaign on the second)."""
+    reduced = chain[1]
+    reduced.to_netcdf(tmp_path / "reduced.nc")
+    from_file = read_netcdf(tmp_path / "reduced.nc", "reduced")
+    assert not reduced.contact_shape_real.isel(harmonic=1).values.flags.c_contiguous   # what is tested
+    ours, theirs = structure_from_reduced(reduced, 3), structure_from_reduced(from_file, 3)
+    for a, b in zip(ours.harmonics, theirs.harmonics):
+        for name in ("B", "response", "force", "K"):
+            x, y = getattr(a, name), getattr(b, name)
+            assert np.array_equal(x, y) and x.strides == y.strides, name
 
 
 def test_failed_geometry_has_the_variables_of_a_solved_one_all_nan(chain):

@@ -77,7 +77,9 @@ class StepControl:
     ``between``: looser corrector tolerance of the natural steps that end between grid values
     (:meth:`corrector_tolerance`; None: the run's tolerance everywhere). ``give_up_damping``: a
     corrector whose damped Newton step needs ``λ`` at or below it fails its step at once (module
-    docstring; None: only :attr:`corrector` ends it).
+    docstring; None: only :attr:`corrector` ends it). ``quasi_newton``: the correctors take good
+    Broyden steps on their factorisation instead of chord steps
+    (:func:`ringdamper.nonlinear.newton.newton`).
     ``tangent_rtol``: accuracy (scaled 2-norm) of the arc-length tangents that GMRES solves on a
     lagged LU (:mod:`ringdamper.nonlinear.krylov`)."""
 
@@ -92,6 +94,7 @@ class StepControl:
     between: float | None = None  # corrector tolerance between grid values (None: the run's tol)
     give_up_damping: float | None = GIVE_UP_DAMPING  # a corrector that needs damping this deep fails its step
     tangent_rtol: float = krylov.RTOL  # accuracy of arc-length tangents by GMRES on a lagged LU
+    quasi_newton: bool = False  # correctors take quasi-Newton steps on their factorisation
 
     def __post_init__(self):
         if not 0 < self.minimum <= self.initial:
@@ -257,7 +260,7 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
         z_pred = z + (s_t - s) * tangent
         res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale,
                      steps.corrector_tolerance(tol, s_t - s, on_grid), corrector, factorization=fac,
-                     give_up_damping=steps.give_up_damping)
+                     give_up_damping=steps.give_up_damping, quasi_newton=steps.quasi_newton)
         why = res.reason
         if res.converged:
             fac_t, tangent_t = _natural_tangent(fun, dfun_ds, res.z, s_t, res.factorization, scale,
@@ -381,7 +384,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
             return np.r_[r, plane @ (zz - zp)], Jb, trivial, n_core, payload
 
         res = newton(on_plane, zp, lambda _: scale, tol, corrector, factorization=fac,
-                     give_up_damping=steps.give_up_damping)
+                     give_up_damping=steps.give_up_damping, quasi_newton=steps.quasi_newton)
         if not res.converged:
             return res, None, None, 0.0, res.reason
         chord = (res.z - z) / scale

@@ -119,6 +119,25 @@ def linear_solver(J, trivial: np.ndarray | None, n_core: int, previous=None,
     return factorize(J, trivial, n_core)
 
 
+@dataclass(frozen=True)
+class StepRule:
+    """How long the steps on one factorisation go on: while they contract at a rate
+    ``θ < theta_max`` and the iterations still needed at that rate stay within ``chord_budget``."""
+
+    theta_max: float
+    chord_budget: int
+
+
+#: chord steps: a rate of 1/2 and a dozen more steps (a chord step costs a residual, a fresh
+#: Jacobian some 20: docs/nonlinear_core.md §10)
+CHORD = StepRule(theta_max=0.5, chord_budget=12)
+
+#: quasi-Newton steps: they converge superlinearly once on their way, so they are followed up to a
+#: first rate of 0.7 and the budget only bounds runaway cases (measured on campaign rings against
+#: 0.5 and 0.8: docs/nonlinear_core.md §10)
+QUASI_NEWTON = StepRule(theta_max=0.7, chord_budget=100)
+
+
 @dataclass
 class NewtonResult:
     z: np.ndarray
@@ -133,8 +152,9 @@ class NewtonResult:
 
 def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarray],
            tol: float = 1e-10, max_iter: int = 20, factorization: Factorization | None = None,
-           theta_max: float = 0.5, chord_budget: int = 12,
-           lambda_min: float = 1.0 / 256, give_up_damping: float | None = None) -> NewtonResult:
+           theta_max: float | None = None, chord_budget: int | None = None,
+           lambda_min: float = 1.0 / 256, give_up_damping: float | None = None,
+           quasi_newton: bool = False) -> NewtonResult:
     """Newton's method with Jacobian reuse and damping for ``r(z) = 0``.
 
     ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)`` (``J`` None when not requested).
@@ -147,7 +167,10 @@ def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarr
     * chord steps with the given (or last) factorisation while they contract (rate
       θ < ``theta_max``) and the iterations still needed at that rate stay within
       ``chord_budget`` (a chord step costs a residual, far less than a Jacobian and its LU);
-      otherwise the Jacobian is recomputed at the better point;
+      otherwise the Jacobian is recomputed at the better point. With ``quasi_newton``, the
+      steps on that factorisation are good Broyden steps instead (:class:`QuasiNewtonSteps`,
+      superlinear where the chord steps contract linearly), and the defaults follow their
+      contraction further (:data:`QUASI_NEWTON`; :data:`CHORD` otherwise);
     * after a fresh Jacobian, a damped step ``λ δz``: accepted when the simplified correction
       ``J⁻¹ r(z + λδz)`` is shorter than ``(1 − λ/4) |δz|`` (natural monotonicity test), else λ
       is halved down to ``lambda_min``. This breaks the cycles plain Newton falls into on the
@@ -164,20 +187,25 @@ def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarr
     bounded by ``4 max_iter``. The decisions depend only on the iterates (no timing), so runs
     are reproducible. ``effort`` = Jacobians + iterations / ``chord_budget``.
     """
+    defaults = QUASI_NEWTON if quasi_newton else CHORD
+    theta_max = defaults.theta_max if theta_max is None else theta_max
+    chord_budget = defaults.chord_budget if chord_budget is None else chord_budget
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         res = _iterate(fun, np.array(z0, float), scale, tol, max_iter, factorization,
-                       theta_max, chord_budget, lambda_min, give_up_damping)
+                       theta_max, chord_budget, lambda_min, give_up_damping, quasi_newton)
     res.effort = res.jacobians + res.iterations / chord_budget
     return res
 
 
-def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_min, give_up):
+def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_min, give_up,
+             quasi_newton):
     n_jac = n_newton = it = 0
     floor = lambda_min if give_up is None else max(lambda_min, give_up)   # the run ends at give_up
     fresh = fac is None
     fac = None if fresh else fac.factorization       # chord steps with an LU
     ev = fun(z, fresh)
     dz = None                                    # correction of ``ev`` with ``fac``, if known
+    steps = None                                 # quasi-Newton steps taken on ``fac``
     while True:
         if fresh:
             if ev[1] is None:
@@ -188,11 +216,13 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_
                                     n_jac)
             fac = factorize(J, trivial, n_core)
             n_jac += 1
-            dz = None
+            dz = steps = None
         payload = ev[4]
         if dz is None:
             dz = _correction(fac, ev[0])
         sc = scale(z)
+        if quasi_newton and steps is None:
+            steps = QuasiNewtonSteps(sc**-2.0)       # the scaled Euclidean product
         step = np.max(np.abs(dz) / sc)
         if not np.isfinite(step):
             if fresh:
@@ -217,20 +247,72 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_
             if give_up is not None and lam <= give_up:
                 return NewtonResult(z, False, it, payload, fac,
                                     f"damped step of {lam:g} <= {give_up:g} (outside Newton's contraction)", n_jac)
+            if steps is not None and lam == 1.0:     # a full step: the first secant on ``fac``
+                steps.take(dz)
+                corr = steps.correction(corr)[0]
             z, ev, dz, fresh = z + lam * dz, trial, corr, lam < 1.0
             continue
-        trial = fun(z + dz, False)                   # chord step
-        corr = _correction(fac, trial[0])
-        theta = np.max(np.abs(corr) / sc) / step
+        trial = fun(z + dz, False)                   # chord (or quasi-Newton) step on ``fac``
+        corr = contracted = _correction(fac, trial[0])
+        if steps is not None:
+            corr, contracted = steps.correction(corr, dz)
+        theta = np.max(np.abs(contracted) / sc) / step
         if theta < theta_max:
             needed = np.log(tol / (theta * step)) / np.log(theta) if theta > 0 else 0.0
             if needed <= chord_budget:
+                if steps is not None:
+                    steps.take(dz)
                 z, ev, dz = z + dz, trial, corr
                 continue
         if theta < 1:
             z, ev = z + dz, trial
         fresh = True
     return NewtonResult(z, False, it, payload, fac, f"no convergence in {it} iterations", n_jac)
+
+
+def _correction(fac, r):
+    return fac.solve(-r) if np.all(np.isfinite(r)) else np.full(r.size, np.inf)
+
+
+class QuasiNewtonSteps:
+    """Good Broyden updates of a factorised Jacobian ``J₀``, applied to its corrections
+    (Deuflhard's error-oriented quasi-Newton method QNERR, *Newton Methods for Nonlinear
+    Problems*, 2004, §2.1.4). With the steps ``Δx₀ … Δx_k`` taken since ``J₀`` (each the
+    quasi-Newton correction at its start), the correction at ``x_{k+1}`` is
+
+    ``v = −J₀⁻¹ F(x_{k+1})``, ``v ← v + ⟨Δx_{i−1}, v⟩/‖Δx_{i−1}‖² · Δx_i`` for i = 1 … k,
+    ``Δx_{k+1} = v / (1 − ⟨Δx_k, v⟩/‖Δx_k‖²)``,
+
+    which is ``−J_{k+1}⁻¹ F(x_{k+1})`` for the Broyden matrices ``J_{i+1} = J_i + F(x_{i+1})
+    Δx_iᵀ W / ‖Δx_i‖²`` (the secant condition along the step taken, the rank-one change smallest
+    in the inner product ``⟨a, b⟩ = aᵀ W b``, ``W = diag(weights)``). Each step costs one solve
+    with ``J₀`` and ``k`` inner products; where the chord method contracts linearly, by the rate
+    ``θ`` at which ``J₀`` misses ``J``, these steps converge superlinearly."""
+
+    def __init__(self, weights: np.ndarray):
+        self.weights = weights
+        self.taken: list[tuple[np.ndarray, np.ndarray, float]] = []   # Δx, W Δx, ‖Δx‖²
+
+    def take(self, dz: np.ndarray) -> None:
+        """Record the step ``dz`` (the correction this object returned, or ``J₀``'s own)."""
+        self.taken.append(self._entry(dz))
+
+    def _entry(self, dz):
+        wdz = self.weights * dz
+        return dz, wdz, float(wdz @ dz)
+
+    def correction(self, v: np.ndarray,
+                   pending: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """The quasi-Newton correction from ``J₀``'s correction ``v`` at the point reached by the
+        steps taken and ``pending`` (the step that led there, not yet recorded), and ``v`` before
+        the last division (its length over the last step's is the contraction rate θ)."""
+        history = self.taken if pending is None else self.taken + [self._entry(pending)]
+        if not history:
+            return v, v
+        for (_, wa, aa), (b, _, _) in zip(history[:-1], history[1:]):
+            v = v + (wa @ v / aa) * b
+        _, wa, aa = history[-1]
+        return v / (1.0 - wa @ v / aa), v
 
 
 def _correction(fac, r):

@@ -20,13 +20,19 @@ spring's kink in the AFT and the Newton tolerance), the cubic and unilateral spr
 nothing (1e-4) and the Jenkins elements take up to more than 30 % of it.
 
 Tanh friction (``tanh_friction_nm.py``, NLvib's example 05 system at H = 21): at every backbone point
-the EPMC's negative damping balances the friction's dissipation, ``ξ ∫ q̇ᵀ M q̇ dt = ∮ f du`` (1e-6);
-at the smallest amplitude the mode is that of the system with m1 held, at the largest that of the free
-system (1e-3; measured 5e-6 and 2e-6; energy balance measured 1.5e-8), and the damping peaks in
-between (more than 10× either end)."""
+the EPMC's negative damping balances the friction's dissipation, ``ξ ∫ q̇ᵀ M q̇ dt = ∮ f du``: the ξ
+that balances them lies within Newton's tolerance on ξ of the computed one (tol·ω, the EPMC's
+convergence scale of ξ; measured up to 0.31 of it, 0.46 with chord steps); at the smallest amplitude the mode is that of
+the system with m1 held, at the largest that of the free system (1e-3; measured 5e-6 and 2e-6), and the
+damping peaks in between (more than 10× either end)."""
+import inspect
+
 import numpy as np
 
 from ringdamper.bench.library import load_example as _example
+from ringdamper.nonlinear.epmc import epmc
+
+EPMC_TOL = inspect.signature(epmc).parameters["tol"].default   # the examples' Newton tolerance
 
 
 def test_duffing_example(tmp_path):
@@ -105,7 +111,8 @@ def test_tanh_friction_example_balances_energy_and_meets_both_limits(tmp_path):
         d = backbone.d[i].reshape(C, elements.npairs, 3).transpose(1, 2, 0)
         lam = backbone.lam[i].reshape(C, elements.npairs, 3).transpose(1, 2, 0)
         dissipated = elements.energy(d, lam).sum()
-        assert abs(backbone.xi[i] * kinetic - dissipated) <= 1e-6 * dissipated
+        # the damping that balances the energies is ξ to within Newton's tolerance on ξ (tol·ω)
+        assert abs(backbone.xi[i] - dissipated / kinetic) <= EPMC_TOL * backbone.omega[i]
     fixed, free = example.fixed_and_free()
     assert abs(backbone.omega[0] / fixed - 1) <= 1e-3
     assert abs(backbone.omega[-1] / free - 1) <= 1e-3

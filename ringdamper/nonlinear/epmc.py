@@ -169,8 +169,8 @@ BETWEEN_TOL = 1e-5
 
 def default_steps() -> StepControl:
     """Step control of the EPMC in ``log α``: initial 0.2, minimum 1e-4, maximum 0.5, correctors failed
-    after :data:`CORRECTOR_JACOBIANS` fresh Jacobians, quasi-Newton corrector steps (on twelve
-    campaign rings 14 % less CPU and a quarter fewer LUs than chord steps, the slowest ring 54 → 37 s:
+    after :data:`CORRECTOR_JACOBIANS` fresh Jacobians, quasi-Newton corrector steps (on sixteen
+    campaign and paper rings 10 % less CPU and 14 % fewer LUs than chord steps:
     docs/nonlinear_core.md §10)."""
     return StepControl(initial=0.2, minimum=1e-4, maximum=0.5, corrector=CORRECTOR_JACOBIANS,
                        between=BETWEEN_TOL, quasi_newton=True)

@@ -313,7 +313,3 @@ class QuasiNewtonSteps:
             v = v + (wa @ v / aa) * b
         _, wa, aa = history[-1]
         return v / (1.0 - wa @ v / aa), v
-
-
-def _correction(fac, r):
-    return fac.solve(-r) if np.all(np.isfinite(r)) else np.full(r.size, np.inf)

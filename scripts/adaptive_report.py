@@ -6,6 +6,7 @@ from pathlib import Path
 import pandas as pd
 import yaml
 
+from ringdamper.bench.machine import reference_lu_seconds
 from ringdamper.campaign.adaptive.report import comparison_table, design_row, trace_table
 from ringdamper.campaign.report_tables import write_html_table
 from ringdamper.campaign.sampling import read_samples
@@ -27,7 +28,7 @@ plot_trace(trace, sampling.get("adaptive", {}).get("loo_tolerance", float("nan")
 design = sampling.get("design", "paper")
 row = design_row(design, samples, records, pd.read_csv(sm.input.metrics, index_col="output"),
                  yaml.safe_load(open(sm.input.optimum)), pd.read_csv(sm.input.check), pd.read_csv(sm.input.table3),
-                 sm.input.benchmarks)
+                 sm.input.benchmarks, reference_lu_seconds())
 row.to_csv(sm.output.row, index=False, float_format="%.6g")
 table, notes = comparison_table(row, Path(sm.params.committed))
 if records and records[-1]["reason"] == "budget":
@@ -36,5 +37,8 @@ if records and records[-1]["reason"] == "budget":
 write_html_table(table.T.reset_index().set_axis(["quantity", *table.design], axis=1), sm.output.comparison,
                  "Design comparison on the validation rings",
                  notes=["job_cpu_s, job_wall_s: CPU and wall seconds summed over the chain jobs of every ring and "
-                        "the rounds (benchmarks); *_coverage: share of validation points within +-2 sigma."] + notes)
+                        "the rounds (benchmarks); job_cpu_reference_lus: job_cpu_s in CPU times of a reference LU "
+                        "(reference_lu_s: LAPACK dgetrf of order 1476 on one thread, timed by this rule on the "
+                        "machine of the run), the cost to compare between machines (docs/design.md section 8); "
+                        "*_coverage: share of validation points within +-2 sigma."] + notes)
 log.info("\n%s", table.T.to_string())

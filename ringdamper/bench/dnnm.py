@@ -2,8 +2,10 @@
 
 The rings: the default ring and the campaign's hard rings :data:`HARD_RINGS` (gids of the paper
 design, :func:`ringdamper.campaign.sampling.make_samples`), each through mesh -> static -> reduced
-(untimed) -> dNNM at the campaign's fidelity (timed, CPU seconds of this process). The default ring's
-dNNM is also run under cProfile: LU factorisations, residual evaluations and the top functions.
+(untimed) -> dNNM at the campaign's fidelity (timed, CPU seconds of this process, and the same in
+reference LUs of this process, :mod:`ringdamper.bench.machine`, the figure that compares between
+machines). The default ring's dNNM is also run under cProfile: LU factorisations, residual evaluations
+and the top functions.
 :func:`run` returns the figures; it asserts nothing (speed is measured, never asserted).
 """
 from __future__ import annotations
@@ -66,6 +68,7 @@ def _profile_figures(prof: cProfile.Profile, top: int = 12) -> dict:
 
 def run(config: dict, rings=HARD_RINGS) -> dict:
     """The default ring (with its profile) and ``rings`` (gids of the paper design)."""
+    from ringdamper.bench.machine import reference_lu_seconds
     from ringdamper.campaign.sampling import make_samples
     from ringdamper.nonlinear.stage import default_normalisation
     from ringdamper.studies.hub_calibration import crossing_speed
@@ -79,6 +82,10 @@ def run(config: dict, rings=HARD_RINGS) -> dict:
         kappa = tuple(float(samples.loc[gid, k]) for k in ("kappa1", "kappa2", "kappa3"))
         reduced, static = ring_inputs(config, kappa)
         out[gid] = {"kappa": list(kappa), **time_dnnm(config, reduced, static, normalisation)}
-    cpu = np.array([v["cpu_s"] for k, v in out.items() if k != "default_profiled"])
+    lu = reference_lu_seconds()
+    for k in ("default", *rings):
+        out[k]["cpu_reference_lus"] = out[k]["cpu_s"] / lu
+    cpu = np.array([out[k]["cpu_s"] for k in ("default", *rings)])
     out["cpu_max_over_default"] = float(cpu.max() / out["default"]["cpu_s"])
+    out["reference_lu_s"] = lu
     return out

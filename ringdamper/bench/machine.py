@@ -1,14 +1,13 @@
 """The machine a benchmark ran on, and its speed in the operation the dNNM spends most of its time on.
 
-Benchmark seconds compare only on one machine: the same code's dNNM took 2.3–2.7 times longer a core on
-an AMD EPYC with AVX2 only (Zen 1) than on one with AVX-512 (docs/nonlinear_core.md §10). Every
+Benchmark seconds compare only on one machine: the same code took about 2.7 times longer a core on an
+AMD EPYC with AVX2 only (Zen 1) than on one with AVX-512 (docs/design.md §8). Every
 ``make bench`` file therefore records the CPU, the BLAS library with the kernel it loaded (OpenBLAS
 chooses one for the CPU at start-up, ``threadpoolctl``'s ``architecture``) and the CPU time of a
 *reference LU*: LAPACK's ``dgetrf`` of a dense real matrix of order :data:`REFERENCE_ORDER`, the size of
 the default ring's condensed Jacobian at H = 3, on one thread. A dNNM's CPU time divided by it, the
-time in reference LUs, is the figure to compare between machines (dense factorisations are a third to
-a half of a dNNM, and its other kernels, BLAS products and NumPy on arrays of a few hundred entries,
-scale with the same vector width and memory bandwidth to first order).
+time in reference LUs, is the figure meant to compare between machines (dense factorisations are a
+third to a half of a dNNM; docs/design.md §8).
 """
 from __future__ import annotations
 

@@ -12,7 +12,6 @@ import argparse
 import json
 import multiprocessing as mp
 import os
-import platform
 import resource
 import time
 import traceback
@@ -20,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ringdamper.bench.machine import describe
 from ringdamper.config import load_config
 from ringdamper.status import usable_status
 from ringdamper.workers import THREAD_VARIABLES
@@ -256,13 +256,13 @@ def main(argv=None) -> None:
     for var in THREAD_VARIABLES:                      # read by the spawned processes' BLAS: one core
         os.environ.setdefault(var, "1")
     ctx = mp.get_context("spawn")
+    machine = describe()
     for name in args.only or BENCHMARKS:
         queue = ctx.Queue()
         proc = ctx.Process(target=_run_one, args=(name, config, queue))
         proc.start()
         result = queue.get()
         proc.join()
-        result["machine"] = {"cpus": mp.cpu_count(), "python": platform.python_version(),
-                             "blas_threads": os.environ["OPENBLAS_NUM_THREADS"]}
+        result["machine"] = machine
         (out / f"{name}.json").write_text(json.dumps(result, indent=2))
         print(f"{name}: {json.dumps(result)}")

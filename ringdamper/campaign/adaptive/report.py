@@ -41,14 +41,17 @@ def job_times(benchmarks) -> tuple[float, float]:
 
 
 def design_row(design: str, samples: pd.DataFrame, records: list[dict], metrics: pd.DataFrame, optimum: dict,
-               check: pd.DataFrame, table3: pd.DataFrame, benchmarks) -> pd.DataFrame:
+               check: pd.DataFrame, table3: pd.DataFrame, benchmarks, reference_lu_s: float) -> pd.DataFrame:
     """The design's row of the comparison table (one-row DataFrame). ``metrics``: validation_metrics.csv
     (index output); ``optimum``: optimum.yaml; ``check``: optimum_check.csv (row ``zeta_max``);
-    ``table3``: table3.csv (the forced-response reductions of the optimum against the default ring)."""
+    ``table3``: table3.csv (the forced-response reductions of the optimum against the default ring);
+    ``reference_lu_s``: CPU seconds of the machine's reference LU (:mod:`ringdamper.bench.machine`), the
+    unit of ``job_cpu_reference_lus``, the job CPU that compares between machines."""
     cpu, wall = job_times(benchmarks)
     zeta = check.set_index("quantity").loc["zeta_max"]
     row = {"design": design, "n_training": int((samples.split == "training").sum()), "rounds": len(records),
            "stop": records[-1]["reason"] if records else "", "job_cpu_s": cpu, "job_wall_s": wall,
+           "reference_lu_s": reference_lu_s, "job_cpu_reference_lus": cpu / reference_lu_s,
            **{f"optimum_kappa{i + 1}": k for i, k in enumerate(optimum["kappa"])},
            "zeta_max_predicted": float(zeta["predicted"]), "zeta_max_computed": float(zeta["computed"])}
     for out in OUTPUTS:

@@ -3,7 +3,7 @@
 The rings: the default ring and the campaign's hard rings :data:`HARD_RINGS` (gids of the paper
 design, :func:`ringdamper.campaign.sampling.make_samples`), each through mesh -> static -> reduced
 (untimed) -> dNNM at the campaign's fidelity (timed, CPU seconds of this process, and the same in
-reference LUs of this process, :mod:`ringdamper.bench.machine`, the figure that compares between
+reference LUs of this process, :mod:`ringdamper.bench.machine`, the figure meant to compare between
 machines). The default ring's dNNM is also run under cProfile: LU factorisations, residual evaluations
 and the top functions.
 :func:`run` returns the figures; it asserts nothing (speed is measured, never asserted).

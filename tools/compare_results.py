@@ -17,7 +17,8 @@ import yaml
 
 COMPARED = ("*.nc", "*.csv", "*.yaml")
 SKIPPED = ("logs", "benchmarks")
-MEASURED_COLUMNS = ("job_cpu_s", "job_wall_s")  # the design row's summed benchmark times
+# the design row's summed benchmark times and the reference LU timed by its rule (and their ratio)
+MEASURED_COLUMNS = ("job_cpu_s", "job_wall_s", "reference_lu_s", "job_cpu_reference_lus")
 
 
 def files(root: Path) -> set[str]:

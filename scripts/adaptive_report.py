@@ -6,7 +6,7 @@ from pathlib import Path
 import pandas as pd
 import yaml
 
-from ringdamper.bench.machine import reference_lu_seconds
+from ringdamper.bench.machine import REFERENCE_ORDER, reference_lu_seconds
 from ringdamper.campaign.adaptive.report import comparison_table, design_row, trace_table
 from ringdamper.campaign.report_tables import write_html_table
 from ringdamper.campaign.sampling import read_samples
@@ -38,7 +38,8 @@ write_html_table(table.T.reset_index().set_axis(["quantity", *table.design], axi
                  "Design comparison on the validation rings",
                  notes=["job_cpu_s, job_wall_s: CPU and wall seconds summed over the chain jobs of every ring and "
                         "the rounds (benchmarks); job_cpu_reference_lus: job_cpu_s in CPU times of a reference LU "
-                        "(reference_lu_s: LAPACK dgetrf of order 1476 on one thread, timed by this rule on the "
-                        "machine of the run), the cost to compare between machines (docs/design.md section 8); "
+                        f"(reference_lu_s: LAPACK dgetrf of order {REFERENCE_ORDER} on one thread, timed by this "
+                        "rule on the machine of the run), the cost to compare between machines (docs/design.md "
+                        "section 8); "
                         "*_coverage: share of validation points within +-2 sigma."] + notes)
 log.info("\n%s", table.T.to_string())

@@ -39,12 +39,13 @@ def cpu_model() -> str:
 
 
 def blas_libraries() -> list[dict]:
-    """Each BLAS the process loaded (sorted): its implementation, version and the kernel it chose."""
+    """Each BLAS the process loaded (sorted): its implementation, version and the kernel it chose
+    (None where the library does not say, e.g. MKL)."""
     from threadpoolctl import threadpool_info
 
     keys = ("internal_api", "version", "architecture")
-    found = {tuple(str(info.get(k)) for k in keys) for info in threadpool_info() if info.get("user_api") == "blas"}
-    return [dict(zip(keys, values)) for values in sorted(found)]
+    found = {tuple(info.get(k) for k in keys) for info in threadpool_info() if info.get("user_api") == "blas"}
+    return [dict(zip(keys, values)) for values in sorted(found, key=lambda values: tuple(map(str, values)))]
 
 
 def reference_lu_seconds(order: int = REFERENCE_ORDER, repeats: int = REPEATS, seed: int = 0) -> float:

@@ -359,10 +359,11 @@ def resolve_point(backbone: Backbone, i: int, H: int, nt: int | None = None, tol
     :func:`default_nt`) by Newton at its fixed α: ``(one-point backbone, "")``, or ``(None, why)``
     if Newton does not converge. The problem is the backbone's at ``H`` (same structure, which must
     hold harmonics up to ``H``; same explicit modes of the shared harmonics, phase unknown, gauge
-    position and pinned directions); the start is the point's solution with the harmonics above
-    the backbone's set to zero, plus, with ``neighbour = (lower, j, higher)`` (another grid point:
-    ``lower`` its backbone at this backbone's H, ``j`` its index there, ``higher`` its one-point
-    backbone at ``H``), the change that raising H made to that point."""
+    position and pinned directions); Newton takes quasi-Newton steps on each factorisation, as the
+    continuation's correctors (:func:`default_steps`). The start is the point's solution with the
+    harmonics above the backbone's set to zero, plus, with ``neighbour = (lower, j, higher)``
+    (another grid point: ``lower`` its backbone at this backbone's H, ``j`` its index there,
+    ``higher`` its one-point backbone at ``H``), the change that raising H made to that point."""
     t0 = time.perf_counter()
     base = backbone.model
     nt = default_nt(H) if nt is None else nt
@@ -381,7 +382,7 @@ def resolve_point(backbone: Backbone, i: int, H: int, nt: int | None = None, tol
     problem = EPMCProblem(model, _same_unknown(base, model, backbone.phase_index), backbone.drift_tol,
                           backbone.amplitude)
     s = np.log(backbone.alpha[i])
-    res = newton(lambda z, jac: problem.fun(z, s, jac), z0, problem.scale, tol, max_iter)
+    res = newton(lambda z, jac: problem.fun(z, s, jac), z0, problem.scale, tol, max_iter, quasi_newton=True)
     if not res.converged:
         return None, f"Newton at H = {H}: {res.reason}"
     run = NaturalResult(np.array([s]), [ContinuationPoint(s, res.z, res.payload, res.iterations)],

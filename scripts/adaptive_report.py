@@ -1,5 +1,5 @@
 """Rule script: samples.csv, the rounds' records, validation metrics, optimum and its check, the jobs'
-benchmarks -> the design by round and the stopping trace (figures), the rounds' table and the design's
+benchmarks and CPU records -> the design by round and the stopping trace (figures), the rounds' table and the design's
 row of the comparison table beside the other design's committed row."""
 from pathlib import Path
 
@@ -7,7 +7,7 @@ import pandas as pd
 import yaml
 
 from ringdamper.bench.machine import REFERENCE_ORDER, reference_lu_seconds
-from ringdamper.campaign.adaptive.report import comparison_table, design_row, trace_table
+from ringdamper.campaign.adaptive.report import comparison_table, design_row, job_times, trace_table
 from ringdamper.campaign.report_tables import write_html_table
 from ringdamper.campaign.sampling import read_samples
 from ringdamper.logs import to_file
@@ -26,18 +26,23 @@ write_html_table(trace, sm.output.rounds_html, "Adaptive rounds: leave-one-out e
 plot_design(samples, sm.output.design)
 plot_trace(trace, sampling.get("adaptive", {}).get("loo_tolerance", float("nan")), sm.output.trace)
 design = sampling.get("design", "paper")
+times = job_times(sm.input.benchmarks, sm.params.cpu_records)
 row = design_row(design, samples, records, pd.read_csv(sm.input.metrics, index_col="output"),
                  yaml.safe_load(open(sm.input.optimum)), pd.read_csv(sm.input.check), pd.read_csv(sm.input.table3),
-                 sm.input.benchmarks, reference_lu_seconds())
+                 times, reference_lu_seconds())
 row.to_csv(sm.output.row, index=False, float_format="%.6g")
 table, notes = comparison_table(row, Path(sm.params.committed))
+if times["sampled_jobs"]:
+    notes.append(f"{times['sampled_jobs']} jobs ran before CPU records existed: their CPU is Snakemake's sampled "
+                 "cpu_time, a lower bound (docs/adaptive.md).")
 if records and records[-1]["reason"] == "budget":
     notes.append(f"The budget sampling.adaptive.n_max = {sampling['adaptive']['n_max']} ran out before the stop "
                  f"rule fired; last worst leave-one-out error {records[-1]['worst_loo']:.3g}.")
 write_html_table(table.T.reset_index().set_axis(["quantity", *table.design], axis=1), sm.output.comparison,
                  "Design comparison on the validation rings",
                  notes=["job_cpu_s, job_wall_s: CPU and wall seconds summed over the chain jobs of every ring and "
-                        "the rounds (benchmarks); job_cpu_reference_lus: job_cpu_s in CPU times of a reference LU "
+                        "the rounds (CPU: each job's own count at exit; wall: Snakemake's benchmarks); "
+                        "job_cpu_reference_lus: job_cpu_s in CPU times of a reference LU "
                         f"(reference_lu_s: LAPACK dgetrf of order {REFERENCE_ORDER} on one thread, timed by this "
                         "rule on the machine of the run), the cost to compare between machines (docs/design.md "
                         "section 8); "

@@ -17,7 +17,7 @@ import yaml
 
 COMPARED = ("*.nc", "*.csv", "*.yaml")
 SKIPPED = ("logs", "benchmarks")
-# the design row's summed benchmark times and the reference LU timed by its rule (and their ratio)
+# the design row's summed job times and the reference LU timed by its rule (and their ratio)
 MEASURED_COLUMNS = ("job_cpu_s", "job_wall_s", "reference_lu_s", "job_cpu_reference_lus")
 
 

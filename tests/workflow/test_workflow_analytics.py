@@ -7,6 +7,7 @@ import pytest
 import yaml
 
 from ringdamper.io import read_netcdf
+from ringdamper.logs import cpu_record, read_cpu_seconds
 
 
 @pytest.fixture(scope="module")
@@ -130,6 +131,13 @@ def test_the_campaign_ran_adaptively_in_rounds_to_its_budget(campaign, small_con
     row = pd.read_csv(campaign / "tables" / "design_row.csv").iloc[0]
     assert row.design == "adaptive" and row.n_training == adaptive["n_max"] and row.stop == "budget"
     assert row.job_cpu_s > 0 and 0 < row.zeta_max_computed
+    # the job CPU is the jobs' own records, one per chain job, at most both cores for the whole wall time
+    jobs = [f"{stage}/{gid}" for gid in samples.gid for stage in ("static", "reduced", "dnnm")]
+    jobs += [f"adaptive/round_{r['round']}" for r in records]
+    job_cpu = [read_cpu_seconds(cpu_record(campaign / "logs" / f"{job}.log")) for job in jobs]
+    assert None not in job_cpu
+    assert row.job_cpu_s == pytest.approx(sum(job_cpu), rel=1e-5) and row.job_cpu_s <= 2 * row.job_wall_s
+    assert "ran before CPU records existed" not in (campaign / "tables" / "design_comparison.html").read_text()
     per_lu = row.job_cpu_s / row.reference_lu_s       # three values written to 6 digits: each within 5e-6
     assert row.reference_lu_s > 0 and row.job_cpu_reference_lus == pytest.approx(per_lu, rel=1.5e-5)
     html = (campaign / "report.html").read_text()

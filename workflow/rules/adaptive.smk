@@ -57,6 +57,7 @@ rule adaptive_report:
     params:
         config=sections(*EXPLORATION),
         committed=DESIGN_ROW.format(design=OTHER_DESIGN),
+        cpu_records=chain_cpu_records,
     threads: 1
     resources:
         mem_mb=scaled(400),

@@ -9,6 +9,7 @@ import yaml
 
 from ringdamper.campaign.adaptive.design import round_of
 from ringdamper.campaign.sampling import REFERENCE_RINGS, make_samples
+from ringdamper.logs import cpu_record
 
 SAMPLES = make_samples(config["sampling"]).set_index("gid")
 ADAPTIVE = config["sampling"].get("design", "paper") == "adaptive"
@@ -128,10 +129,20 @@ DESIGN_ROW = "docs/adaptive/{design}_design_row.csv"
 OTHER_DESIGN = {"adaptive": "paper", "paper": "adaptive"}[config["sampling"].get("design", "paper")]
 
 
+def chain_jobs():
+    """The names of every job the design's training and validation rings and rounds cost."""
+    jobs = [f"{stage}/{gid}" for gid in campaign_gids() for stage in ("static", "reduced", "dnnm")]
+    return jobs + [f"adaptive/round_{r['round']}" for r in finished_rounds()]
+
+
 def chain_benchmarks(wildcards):
-    """The benchmark files of every job the design's training and validation rings and rounds cost."""
-    files = [benchmark_file(f"{stage}/{gid}") for gid in campaign_gids() for stage in ("static", "reduced", "dnnm")]
-    return files + [benchmark_file(f"adaptive/round_{r['round']}") for r in finished_rounds()]
+    """The benchmark files (wall time) of :func:`chain_jobs`."""
+    return [benchmark_file(name) for name in chain_jobs()]
+
+
+def chain_cpu_records(wildcards):
+    """The CPU-time records (ringdamper.logs.cpu_record) of :func:`chain_jobs`, in the same order."""
+    return [str(cpu_record(log_file(name))) for name in chain_jobs()]
 
 
 # Resources for a cluster (threads, mem_mb, runtime in minutes), declared in each rule from the

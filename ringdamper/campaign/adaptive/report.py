@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ...logs import read_cpu_seconds
 from ..kriging import OUTPUTS
 
 METRICS = ("r2", "rmse", "coverage")  # per output, from validation_metrics.csv
@@ -34,23 +35,36 @@ def trace_table(records: list[dict]) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def job_times(benchmarks) -> tuple[float, float]:
-    """(CPU, wall) seconds summed over Snakemake benchmark files (columns cpu_time, s)."""
-    tables = [pd.read_csv(path, sep="\t") for path in benchmarks]
-    return (float(sum(t["cpu_time"].sum() for t in tables)), float(sum(t["s"].sum() for t in tables)))
+def job_times(benchmarks, cpu_records) -> dict:
+    """The chain's cost summed over its jobs: ``job_cpu_s`` from each job's own CPU record
+    (:func:`ringdamper.logs.cpu_record`, exact), ``job_wall_s`` from its Snakemake benchmark file (column
+    ``s``). A job without a record (run before records existed) counts with the benchmark's sampled
+    ``cpu_time``, a lower bound (docs/adaptive.md); ``sampled_jobs`` says how many did."""
+    cpu = wall = 0.0
+    sampled = 0
+    for benchmark, record in zip(benchmarks, cpu_records, strict=True):
+        table = pd.read_csv(benchmark, sep="\t")
+        wall += float(table["s"].sum())
+        own = read_cpu_seconds(record)
+        if own is None:
+            sampled += 1
+            own = float(table["cpu_time"].sum())
+        cpu += own
+    return {"job_cpu_s": cpu, "job_wall_s": wall, "sampled_jobs": sampled}
 
 
 def design_row(design: str, samples: pd.DataFrame, records: list[dict], metrics: pd.DataFrame, optimum: dict,
-               check: pd.DataFrame, table3: pd.DataFrame, benchmarks, reference_lu_s: float) -> pd.DataFrame:
+               check: pd.DataFrame, table3: pd.DataFrame, times: dict, reference_lu_s: float) -> pd.DataFrame:
     """The design's row of the comparison table (one-row DataFrame). ``metrics``: validation_metrics.csv
     (index output); ``optimum``: optimum.yaml; ``check``: optimum_check.csv (row ``zeta_max``);
     ``table3``: table3.csv (the forced-response reductions of the optimum against the default ring);
-    ``reference_lu_s``: CPU seconds of the machine's reference LU (:mod:`ringdamper.bench.machine`), the
-    unit of ``job_cpu_reference_lus``, the job CPU that compares between machines."""
-    cpu, wall = job_times(benchmarks)
+    ``times``: :func:`job_times` of the chain; ``reference_lu_s``: CPU seconds of the machine's reference
+    LU (:mod:`ringdamper.bench.machine`), the unit of ``job_cpu_reference_lus``, the job CPU that compares
+    between machines."""
+    cpu = times["job_cpu_s"]
     zeta = check.set_index("quantity").loc["zeta_max"]
     row = {"design": design, "n_training": int((samples.split == "training").sum()), "rounds": len(records),
-           "stop": records[-1]["reason"] if records else "", "job_cpu_s": cpu, "job_wall_s": wall,
+           "stop": records[-1]["reason"] if records else "", "job_cpu_s": cpu, "job_wall_s": times["job_wall_s"],
            "reference_lu_s": reference_lu_s, "job_cpu_reference_lus": cpu / reference_lu_s,
            **{f"optimum_kappa{i + 1}": k for i, k in enumerate(optimum["kappa"])},
            "zeta_max_predicted": float(zeta["predicted"]), "zeta_max_computed": float(zeta["computed"])}

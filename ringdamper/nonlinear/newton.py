@@ -138,6 +138,12 @@ CHORD = StepRule(theta_max=0.5, chord_budget=12)
 QUASI_NEWTON = StepRule(theta_max=0.7, chord_budget=100)
 
 
+#: with ``give_up_damping``: a Newton correction (at a fresh Jacobian) more than this many times the one at
+#: the previous fresh Jacobian ends the run unconverged (:func:`newton`). 1 cut six top points of a
+#: campaign ring and a chain of the randomised family; 2 keeps them (docs/nonlinear_core.md §4.1)
+GROWTH_LIMIT = 2.0
+
+
 @dataclass
 class NewtonResult:
     z: np.ndarray
@@ -181,7 +187,11 @@ def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarr
       only for so short a step means that the predictor lies outside the corrector's region of
       contraction (mostly across a kink of the piecewise-linear AFT residual, where the damped
       iterations creep and cycle between contact states); a halved step, whose predictor lies
-      closer, is cheaper than creeping on (docs/nonlinear_core.md §4.1).
+      closer, is cheaper than creeping on (docs/nonlinear_core.md §4.1). With it, a Newton correction
+      more than :data:`GROWTH_LIMIT` times the one at the previous fresh Jacobian ends the run too:
+      the damped steps accepted in between crossed a kink into a region where the linearisation
+      points further away than from where they started, the cycling between contact states that
+      would otherwise spend the corrector's whole budget of Jacobians.
 
     ``max_iter`` bounds the Newton (fresh Jacobian) iterations; all iterations together are
     bounded by ``4 max_iter``. The decisions depend only on the iterates (no timing), so runs
@@ -206,6 +216,7 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_
     ev = fun(z, fresh)
     dz = None                                    # correction of ``ev`` with ``fac``, if known
     steps = None                                 # quasi-Newton steps taken on ``fac``
+    last_newton = np.inf                         # the Newton correction at the last fresh Jacobian
     while True:
         if fresh:
             if ev[1] is None:
@@ -231,6 +242,12 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_
             continue
         if step <= tol:
             return NewtonResult(z, True, it, payload, fac, "", n_jac)
+        if fresh and give_up is not None:
+            if step > GROWTH_LIMIT * last_newton:
+                return NewtonResult(z, False, it, payload, fac,
+                                    f"Newton correction grew from {last_newton:.3g} to {step:.3g} between Jacobians",
+                                    n_jac)
+            last_newton = step
         if n_newton >= max_iter or it >= 4 * max_iter:
             break
         it += 1

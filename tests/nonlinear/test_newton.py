@@ -41,3 +41,20 @@ def test_converging_newton_is_untouched_by_the_option():
         assert plain.converged and given.converged and abs(plain.z[0]) < 1e-11
         assert np.array_equal(plain.z, given.z) and plain.jacobians == given.jacobians
         assert plain.iterations == given.iterations
+
+
+def shelf(z, jacobian):
+    """``r = z`` above ``z = 1/2`` and a shelf of slope 1/100 below it (root at −49.5): from z = 1 a
+    full step lands on the shelf, where the chord steps stall and the fresh Jacobian's correction is
+    49 times the first one's."""
+    low = z < 0.5
+    r = np.where(low, 0.5 + 0.01 * (z - 0.5), z)
+    return r, (np.diag(np.where(low, 0.01, 1.0)) if jacobian else None), None, 1, None
+
+
+def test_a_corrector_whose_newton_correction_grows_between_jacobians_fails():
+    given = newton(shelf, np.array([1.0]), unit_scale, 1e-10, 20, give_up_damping=FLOOR)
+    assert not given.converged and given.jacobians == 2
+    assert "Newton correction grew from 1 to 49" in given.reason
+    spent = newton(shelf, np.array([1.0]), unit_scale, 1e-10, 20)     # the start point and the grid solves
+    assert spent.converged and abs(spent.z[0] + 49.5) < 1e-9

@@ -1,6 +1,6 @@
 """Rule script: samples.csv, the rounds' records, validation metrics, optimum and its check, the jobs'
-benchmarks and CPU records -> the design by round and the stopping trace (figures), the rounds' table and the design's
-row of the comparison table beside the other design's committed row."""
+benchmarks and CPU records -> the design by round and the stopping trace (figures), the rounds' table
+and the design's row of the comparison table beside the other design's committed row."""
 from pathlib import Path
 
 import pandas as pd

@@ -74,7 +74,7 @@ import numpy as np
 from ringdamper.nonlinear.elements import Elements
 from ringdamper.nonlinear.fourier import Fourier, real_block, real_vector, to_complex
 from ringdamper.nonlinear.friction import ContactAFT, FrictionContacts
-from ringdamper.nonlinear.receptance import Receptance
+from ringdamper.nonlinear.receptance import DampedReceptance, Receptance
 from ringdamper.nonlinear.structure import Structure
 
 
@@ -163,9 +163,10 @@ class CondensedHBM:
         self.PsiS = [m.Psi[:, S] for m, S in zip(self.modal, self.S)]          # explicit
         self.PsiCH = [P.conj().T.copy() for P in self.PsiC]                    # Ψ_Cᴴ
         self.PsiSH = [P.conj().T.copy() for P in self.PsiS]                    # Ψ_Sᴴ
-        self.receptances = [Receptance(m.w2[Cs], P, PH) if h == 0 or not np.any(self.damping[h])
-                            else None for h, (m, Cs, P, PH)
-                            in enumerate(zip(self.modal, self.Cset, self.PsiC, self.PsiCH))]
+        self.receptances = [_receptance(h, m.w2[Cs], c[Cs], P, PH, coupled is not None)
+                            for h, (m, Cs, P, PH, c, coupled)
+                            in enumerate(zip(self.modal, self.Cset, self.PsiC, self.PsiCH, self.damping,
+                                             self.coupling))]
         self.zero_modes = np.flatnonzero(self.modal[0].zero[self.S[0]])    # positions within S_0
         if self.zero_modes.size:
             PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]
@@ -360,9 +361,15 @@ class CondensedHBM:
     def receptance(self, h: int, omega: float, xi: float, z: np.ndarray) -> np.ndarray:
         """``G_h = Ψ_C diag(1/z_C) Ψ_Cᴴ`` at ``(ω, ξ)`` (``z``: the modal impedances there). Where
         harmonic ``h`` is undamped (and always at h = 0, where ``z_r = ω_r²``), ``z_r = ω_r² − s`` with
-        ``s = (hω)² + i hωξ``, and :class:`ringdamper.nonlinear.receptance.Receptance` sums it."""
-        if self.receptances[h] is not None:
-            return self.receptances[h](h * h * omega * omega + 1j * h * omega * xi if h else 0.0)
+        ``s = (hω)² + i hωξ``, and :class:`ringdamper.nonlinear.receptance.Receptance` sums it; where it
+        has modal damping and ``ξ = 0`` (a forced response), ``z_r = ω_r² − u² + i u c_r`` with ``u = hω``,
+        and :class:`ringdamper.nonlinear.receptance.DampedReceptance` sums it."""
+        receptance = self.receptances[h]
+        if isinstance(receptance, DampedReceptance):
+            if xi == 0.0:
+                return receptance(h * omega)
+        elif receptance is not None:
+            return receptance(h * h * omega * omega + 1j * h * omega * xi if h else 0.0)
         Cs = self.Cset[h]
         return (self.PsiC[h] * (1.0 / z[Cs])) @ self.PsiCH[h]
 
@@ -542,6 +549,15 @@ def _complement(basis: np.ndarray) -> np.ndarray:
         return np.eye(n)
     u, _, _ = np.linalg.svd(basis, full_matrices=True)
     return u[:, k:]
+
+
+def _receptance(h: int, w2: np.ndarray, c: np.ndarray, Psi: np.ndarray, PsiH: np.ndarray, coupled: bool):
+    """The summation of harmonic ``h``'s condensed receptance (:meth:`CondensedHBM.receptance`): the
+    undamped series at h = 0 and on undamped harmonics, the damped one on modally damped harmonics, none
+    (the direct sum) where the damping couples the modes."""
+    if h == 0 or not np.any(c):
+        return Receptance(w2, Psi, PsiH)
+    return None if coupled else DampedReceptance(w2, c, Psi, PsiH)
 
 
 def pole_modes(structure: Structure, H: int, lo: float, hi: float) -> list:

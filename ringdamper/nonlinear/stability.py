@@ -135,8 +135,7 @@ def _modal_blocks(model, omega: float, band: float):
             keep[:] = True
         kept.append(np.flatnonzero(keep))
         rows = model._rows(h)
-        rest = m.Psi[:, ~keep]
-        receptance = (rest / z[~keep]) @ rest.conj().T
+        receptance = _rest_receptance(model, h, omega, z, keep)
         if h == 0:
             Z.append(np.diag(z[keep].real))
             D1.append(np.diag(c[keep]) if coupling is None else np.diag(c) + coupling)
@@ -156,6 +155,19 @@ def _modal_blocks(model, omega: float, band: float):
         Pfull[rows, col:col + b.shape[1]] = b
         col += b.shape[1]
     return sla.block_diag(*Z), sla.block_diag(*D1), Pfull, G, kept[0]
+
+
+def _rest_receptance(model, h: int, omega: float, z: np.ndarray, keep: np.ndarray) -> np.ndarray:
+    """``Σ_r ψ_r ψ_rᴴ / z_r`` over the modes of harmonic ``h`` not kept (``~keep``): the model's receptance of
+    its condensed modes (:meth:`~ringdamper.nonlinear.condensed.CondensedHBM.receptance`, summed by its
+    series where it has one), less the condensed modes kept and plus the explicit modes not kept, both
+    few."""
+    m, condensed, explicit = model.modal[h], model.Cset[h], model.S[h]
+    G = model.receptance(h, omega, 0.0, z)
+    for modes, sign in ((condensed[keep[condensed]], -1.0), (explicit[~keep[explicit]], 1.0)):
+        if modes.size:
+            G = G + sign * ((m.Psi[:, modes] / z[modes]) @ m.Psi[:, modes].conj().T)
+    return G
 
 
 def _velocity_force(Kv, G: np.ndarray, P: np.ndarray, KP: np.ndarray, through) -> np.ndarray:

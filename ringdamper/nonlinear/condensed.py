@@ -297,7 +297,7 @@ class CondensedHBM:
             trivial[:self.n_d] = np.tile(np.repeat(~active, 3), C)
         drift, gauge, rotation = self._gauge(r, (dr_dw, dr_dx) if jacobian else (), y, aft.jac)
         if jacobian:
-            J = CoreJacobian(self, aft.jac, active, omega, xi, rotation)
+            J = CoreJacobian(self, aft.jac, omega, xi, rotation)
         return CoreEval(r=r, J=J, dr_domega=dr_dw, dr_dxi=dr_dx, trivial=trivial, d=d, lam=lam,
                         eta=etas, aft=aft, drift=drift, gauge=gauge)
 
@@ -325,9 +325,7 @@ class CondensedHBM:
         grad = np.zeros(self.n_core)
         u = self.PsiC[h] @ (np.conj(vC) * np.conj(1.0 / z[Cs]))
         through_contacts = -2.0 * (u.real[None] if h == 0 else real_vector(u)[None])
-        kc = ev.aft.jac
-        active = np.any(kc.reshape(self.npairs, -1) != 0, axis=1)
-        grad[:self.n_d] = _apply_contact_jacobian(through_contacts, kc, self.fourier.slots(h), active, self.p)[0]
+        grad[:self.n_d] = _apply_contact_jacobian(through_contacts, ev.aft.jac, self.fourier.slots(h), self.p)[0]
         vS = np.conj(v[S])
         grad[self.eta_slices[h]] = 2.0 * (vS.real if h == 0 else real_vector(vS))
         weights = np.abs(etaC) ** 2 if row is None else vC * etaC        # v_r η_r
@@ -449,9 +447,9 @@ class CoreJacobian:
     receptance ``G_h`` is never formed); :meth:`toarray` forms the matrix (``O(p² m)``) for a
     factorisation."""
 
-    def __init__(self, model: "CondensedHBM", kc: np.ndarray, active: np.ndarray, omega: float,
-                 xi: float, rotation: GaugeRotation | None):
-        self.model, self.kc, self.active, self.rotation = model, kc, active, rotation
+    def __init__(self, model: "CondensedHBM", kc: np.ndarray, omega: float, xi: float,
+                 rotation: GaugeRotation | None):
+        self.model, self.kc, self.rotation = model, kc, rotation
         self.z = [model._modal_impedance(h, omega, xi)[0] for h in range(model.H + 1)]
         self.omega, self.xi = omega, xi
         self.shape = (model.n_core, model.n_core)
@@ -460,11 +458,8 @@ class CoreJacobian:
         m = self.model
         C, p, npairs = m.C, m.p, m.npairs
         vd = v[:m.n_d].reshape(C, p)
-        dlam = np.zeros((npairs, 3 * C))
-        a = self.active
-        if np.any(a):
-            vq = vd.reshape(C, npairs, 3).transpose(1, 2, 0).reshape(npairs, 3 * C)[a]
-            dlam[a] = np.matmul(self.kc[a].reshape(-1, 3 * C, 3 * C), vq[..., None])[..., 0]
+        vq = vd.reshape(C, npairs, 3).transpose(1, 2, 0).reshape(npairs, 3 * C, 1)
+        dlam = np.matmul(self.kc.reshape(npairs, 3 * C, 3 * C), vq)[..., 0]   # zero blocks: zeros
         dLam = to_complex(dlam.reshape(npairs, 3, C).transpose(2, 0, 1).reshape(C, p), m.H)
         dD = to_complex(vd, m.H)
         out = np.empty(m.n_core)
@@ -482,7 +477,7 @@ class CoreJacobian:
         """The matrix (Fortran order, :func:`ringdamper.nonlinear.jacobian.dense`), in ``out`` if
         given (e.g. the core block of a bordered matrix)."""
         m = self.model
-        p, kc, active, n_d = m.p, self.kc, self.active, m.n_d
+        p, kc, n_d = m.p, self.kc, m.n_d
         J = np.empty(self.shape, order="F") if out is None else out
         J[:, n_d:] = 0.0                            # explicit columns: each harmonic sets its own block
         JT = J.T                                    # rows of Jᵀ are contiguous in a Fortran-order J
@@ -492,7 +487,7 @@ class CoreJacobian:
             slots = m.fourier.slots(h)
             for block, dest in ((G, rows), (m.PsiSH[h], sl)):  # the contact rows, then explicit rows:
                 real = block.real if h == 0 else real_block(block)   # each entry of their contact columns
-                _apply_contact_jacobian(real, kc, slots, active, p, transposed=True, out=JT[:n_d, dest])
+                _apply_contact_jacobian(real, kc, slots, p, transposed=True, out=JT[:n_d, dest])
             if h == 0:
                 J[rows, sl] = -PsiS.real
                 J[sl, sl] = np.diag(z[S].real)
@@ -570,28 +565,26 @@ def pole_modes(structure: Structure, H: int, lo: float, hi: float) -> list:
     return out
 
 
-def _apply_contact_jacobian(A: np.ndarray, kc: np.ndarray, slots: slice, active: np.ndarray,
-                            p: int, transposed: bool = False, out: np.ndarray | None = None) -> np.ndarray:
+def _apply_contact_jacobian(A: np.ndarray, kc: np.ndarray, slots: slice, p: int, transposed: bool = False,
+                            out: np.ndarray | None = None) -> np.ndarray:
     """``A @ K_c[slots rows, :]`` with ``A`` (R, L·p) over ``(slot in slots, coordinate)`` columns
-    and ``K_c`` the block-diagonal AFT Jacobian ``kc`` (np, 3, C, 3, C); inactive pairs skipped.
+    and ``K_c`` the block-diagonal AFT Jacobian ``kc`` (np, 3, C, 3, C), one small product per pair over
+    views of ``A`` and ``kc`` (a pair without contact stiffness has a zero block and gives zeros: picking
+    out the others would copy ``A``, which costs more than their products).
     ``transposed``: the product's transpose (C·p, R) instead, computed as such (``K_cᵀ Aᵀ`` pair by
     pair), for the rows of a transposed matrix. ``out``: where to write the product (e.g. a view of a
     larger matrix; every entry is set), else a new array."""
     npairs, C = kc.shape[0], kc.shape[2]
     L = slots.stop - slots.start
     R = A.shape[0]
-    result = np.zeros((C * p, R) if transposed else (R, C * p)) if out is None else out
+    result = np.empty((C * p, R) if transposed else (R, C * p)) if out is None else out
     out = result.reshape((C, npairs, 3, R) if transposed else (R, C, npairs, 3))   # splits one axis: a view
-    if not np.all(active):
-        out[(slice(None),) * (1 if transposed else 2) + (~active,)] = 0.0
-    if np.any(active):
-        na = int(active.sum())
-        Aq = A.reshape(R, L, npairs, 3)[:, :, active]                               # (R, L, na, 3)
-        Kq = kc[active][:, :, slots].transpose(0, 2, 1, 3, 4).reshape(na, 3 * L, 3 * C)
-        if transposed:
-            product = np.matmul(Kq.transpose(0, 2, 1), Aq.transpose(2, 1, 3, 0).reshape(na, 3 * L, R))
-            out[:, active] = product.reshape(na, 3, C, R).transpose(2, 0, 1, 3)
-        else:
-            product = np.matmul(Aq.transpose(2, 0, 1, 3).reshape(na, R, 3 * L), Kq)
-            out[:, :, active] = product.reshape(na, R, 3, C).transpose(1, 3, 0, 2)
+    Aq = A.reshape(R, L, npairs, 3)
+    Kq = kc[:, :, slots].transpose(0, 2, 1, 3, 4).reshape(npairs, 3 * L, 3 * C)
+    if transposed:
+        product = np.matmul(Kq.transpose(0, 2, 1), Aq.transpose(2, 1, 3, 0).reshape(npairs, 3 * L, R))
+        out[:] = product.reshape(npairs, 3, C, R).transpose(2, 0, 1, 3)
+    else:
+        product = np.matmul(Aq.transpose(2, 0, 1, 3).reshape(npairs, R, 3 * L), Kq)
+        out[:] = product.reshape(npairs, R, 3, C).transpose(1, 3, 0, 2)
     return result

@@ -36,6 +36,8 @@ with ``K`` such that the remainder bound ``Σ_{k≥K} (k + 1) q^k`` stays below 
 """
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 #: a mode is far when ω_r exceeds this multiple of |s₀|^½ (s₀: the first evaluation)
@@ -47,9 +49,12 @@ REACH = 2.0
 
 
 def terms_needed(q: float) -> int:
-    """Terms ``K`` of the series that bring its remainder ``q^K / (1 − q)`` below :data:`TOL`."""
+    """Terms ``K`` of the series that bring its remainder ``q^K / (1 − q)`` below :data:`TOL`;
+    ``sys.maxsize`` where the series diverges (``q ≥ 1``: the direct sum serves)."""
     if q <= 0.0:
         return 1
+    if q >= 1.0:
+        return sys.maxsize
     return max(1, int(np.ceil(np.log(TOL * (1.0 - q)) / np.log(q))))
 
 
@@ -102,9 +107,12 @@ class Receptance:
 
 def damped_terms_needed(q: float) -> int:
     """Terms ``K`` of the damped series that bring its remainder bound ``Σ_{k≥K} (k + 1) q^k
-    = q^K (K + 1 − K q) / (1 − q)²`` below :data:`TOL`."""
+    = q^K (K + 1 − K q) / (1 − q)²`` below :data:`TOL`; ``sys.maxsize`` where the series diverges
+    (``q ≥ 1``: the direct sum serves)."""
     if q <= 0.0:
         return 1
+    if q >= 1.0:
+        return sys.maxsize
     K = 1
     while q ** K * (K + 1 - K * q) / (1.0 - q) ** 2 > TOL:
         K += 1

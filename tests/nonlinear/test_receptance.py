@@ -2,6 +2,8 @@
 modal damping, against the direct sum inside and beyond its reach, the number of terms, real arithmetic at
 h = 0, and the Jacobians of the cyclic toy (and Hill's condensed receptance) formed with it against those
 formed by the direct sum."""
+import sys
+
 import numpy as np
 
 from ringdamper.nonlinear.condensed import CondensedHBM
@@ -36,7 +38,7 @@ def test_series_equals_the_direct_sum_inside_and_beyond_its_reach():
     w2, Psi = _modes(rng)
     receptance = Receptance(w2, Psi, Psi.conj().T.copy())
     s0 = 1.0 + 0.01j
-    for s in (s0, 0.9 + 0.05j, 1.5 * s0, 0.99 * REACH * s0, 5 * REACH * s0):
+    for s in (s0, 0.9 + 0.05j, 1.5 * s0, 0.99 * REACH * s0, 5 * REACH * s0, 300.0 + 0.01j):   # 300: past 200
         ref = _direct(w2, Psi, s)
         assert np.max(np.abs(receptance(s) - ref)) <= 1e-13 * np.max(np.abs(ref)), s
     assert FAR ** 2 * abs(s0) < 200.0 and receptance.near.size == 6
@@ -48,6 +50,7 @@ def test_terms_bring_the_remainder_to_the_tolerance_and_no_further():
         K = terms_needed(q)
         assert q ** K / (1 - q) <= TOL < q ** (K - 1) / (1 - q), q
     assert terms_needed(0.0) == 1
+    assert terms_needed(1.0) == terms_needed(2.0) == sys.maxsize          # diverges: the direct sum
 
 
 def test_real_modes_at_zero_shift_stay_real():
@@ -90,7 +93,7 @@ def test_damped_series_equals_the_direct_sum_inside_and_beyond_its_reach():
     zeta[[10, 40]] = 1.5
     c = 2.0 * zeta * np.sqrt(w2)
     receptance = DampedReceptance(w2, c, Psi, Psi.conj().T.copy())
-    for u in (1.0, 0.9, 1.3, 0.99 * REACH, 5 * REACH, -1.2):
+    for u in (1.0, 0.9, 1.3, 0.99 * REACH, 5 * REACH, -1.2, 3 * FAR):     # 3 FAR: past the far modes' poles
         ref = _damped_direct(w2, c, Psi, u)
         assert np.max(np.abs(receptance(u) - ref)) <= 1e-13 * np.max(np.abs(ref)), u
     assert receptance.near.size == 6 + 2
@@ -106,6 +109,7 @@ def test_damped_terms_bring_the_bound_to_the_tolerance_and_no_further():
         assert bound(q, K) <= TOL < bound(q, K - 1), q
         assert np.isclose(bound(q, K), sum((k + 1) * q ** k for k in range(K, K + 400)), rtol=1e-9)
     assert damped_terms_needed(0.0) == 1
+    assert damped_terms_needed(1.0) == damped_terms_needed(2.0) == sys.maxsize    # diverges: the direct sum
 
 
 def test_forced_jacobian_and_hill_receptance_with_the_damped_series_equal_the_direct_ones():

@@ -325,7 +325,7 @@ class CondensedHBM:
         grad = np.zeros(self.n_core)
         u = self.PsiC[h] @ (np.conj(vC) * np.conj(1.0 / z[Cs]))
         through_contacts = -2.0 * (u.real[None] if h == 0 else real_vector(u)[None])
-        grad[:self.n_d] = _apply_contact_jacobian(through_contacts, ev.aft.jac, self.fourier.slots(h), self.p)[0]
+        grad[:self.n_d] = apply_contact_jacobian(through_contacts, ev.aft.jac, self.fourier.slots(h), self.p)[0]
         vS = np.conj(v[S])
         grad[self.eta_slices[h]] = 2.0 * (vS.real if h == 0 else real_vector(vS))
         weights = np.abs(etaC) ** 2 if row is None else vC * etaC        # v_r η_r
@@ -487,7 +487,7 @@ class CoreJacobian:
             slots = m.fourier.slots(h)
             for block, dest in ((G, rows), (m.PsiSH[h], sl)):  # the contact rows, then explicit rows:
                 real = block.real if h == 0 else real_block(block)   # each entry of their contact columns
-                _apply_contact_jacobian(real, kc, slots, p, transposed=True, out=JT[:n_d, dest])
+                apply_contact_jacobian(real, kc, slots, p, transposed=True, out=JT[:n_d, dest])
             if h == 0:
                 J[rows, sl] = -PsiS.real
                 J[sl, sl] = np.diag(z[S].real)
@@ -565,7 +565,7 @@ def pole_modes(structure: Structure, H: int, lo: float, hi: float) -> list:
     return out
 
 
-def _apply_contact_jacobian(A: np.ndarray, kc: np.ndarray, slots: slice, p: int, transposed: bool = False,
+def apply_contact_jacobian(A: np.ndarray, kc: np.ndarray, slots: slice, p: int, transposed: bool = False,
                             out: np.ndarray | None = None) -> np.ndarray:
     """``A @ K_c[slots rows, :]`` with ``A`` (R, L·p) over ``(slot in slots, coordinate)`` columns
     and ``K_c`` the block-diagonal AFT Jacobian ``kc`` (np, 3, C, 3, C), one small product per pair over

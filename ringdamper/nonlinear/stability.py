@@ -70,6 +70,7 @@ import numpy as np
 import scipy.linalg as sla
 from scipy import sparse
 
+from ringdamper.nonlinear.condensed import apply_contact_jacobian
 from ringdamper.nonlinear.fourier import real_block
 
 #: modes kept explicit in the Hill problem: ``ω_r ≤ (H + BAND)·ω`` (the others condensed)
@@ -106,12 +107,14 @@ def modal_hill_matrices(model, ev, omega: float, band: float = BAND):
                          "(ContactAFT.jac_velocity)")
     Z, D1, Pfull, G, kept0 = _modal_blocks(model, omega, band)
     Kc = _contact_matrix(ev.aft.jac, model.p)
-    through = sla.lu_factor(np.eye(model.n_d) + Kc @ G, check_finite=False) if np.any(G) else None
+    condensed = any(np.any(g) for g in G)
+    through = sla.lu_factor(_through_matrix(model, ev.aft.jac, G), overwrite_a=True,
+                            check_finite=False) if condensed else None
     KP = Kc @ Pfull if through is None else sla.lu_solve(through, Kc @ Pfull, check_finite=False)
     J, D = Z + Pfull.T @ KP, D1
     if ev.aft.jac_velocity is not None:
-        D = D + Pfull.T @ _velocity_force(_contact_matrix(ev.aft.jac_velocity, model.p), G, Pfull, KP,
-                                          through)
+        D = D + Pfull.T @ _velocity_force(_contact_matrix(ev.aft.jac_velocity, model.p), sla.block_diag(*G),
+                                          Pfull, KP, through)
     if ev.gauge.shape[1]:                           # hold the gauged rigid-body directions
         Q = _held_space(model, ev.gauge, kept0, J.shape[0])
         J, D = Q.T @ J @ Q, Q.T @ D @ Q
@@ -123,9 +126,9 @@ def _modal_blocks(model, omega: float, band: float):
     mode of a harmonic whose damping couples them): ``⊕_h real(diag(z_h))``,
     ``⊕_h real(diag(c_r + 2ihω))`` (plus the coupling), the map ``P = ⊕_h real(Ψ_h)`` from their
     slots to the contact slots, the residual flexibility ``G = ⊕_h real(Ψ_h,c diag(1/z_c) Ψ_h,cᴴ)``
-    of the condensed ones, and the indices of the modes of harmonic 0 kept."""
-    Z, D1, P, kept = [], [], [], []
-    G = np.zeros((model.n_d, model.n_d))
+    of the condensed ones as its harmonics' diagonal blocks, and the indices of the modes of harmonic 0
+    kept."""
+    Z, D1, P, kept, G = [], [], [], [], []
     for h, m in enumerate(model.modal):
         z, _, _ = model._modal_impedance(h, omega, 0.0)
         c = model.damping[h]
@@ -140,7 +143,7 @@ def _modal_blocks(model, omega: float, band: float):
             Z.append(np.diag(z[keep].real))
             D1.append(np.diag(c[keep]) if coupling is None else np.diag(c) + coupling)
             P.append((rows, m.Psi[:, keep].real))
-            G[rows, rows] = receptance.real
+            G.append(receptance.real)
         else:
             Zh, Dh = np.diag(z[keep]), np.diag(c[keep] + 2j * h * omega)
             if coupling is not None:                # every mode kept: the coupling's full matrix
@@ -148,13 +151,28 @@ def _modal_blocks(model, omega: float, band: float):
             Z.append(real_block(Zh))
             D1.append(real_block(Dh))
             P.append((rows, real_block(m.Psi[:, keep])))
-            G[rows, rows] = real_block(receptance)
+            G.append(real_block(receptance))
     Pfull = np.zeros((model.n_d, sum(b.shape[1] for _, b in P)))
     col = 0
     for rows, b in P:
         Pfull[rows, col:col + b.shape[1]] = b
         col += b.shape[1]
     return sla.block_diag(*Z), sla.block_diag(*D1), Pfull, G, kept[0]
+
+
+def _through_matrix(model, kc: np.ndarray, G: list) -> np.ndarray:
+    """``I + K_c G`` (Fortran order, for an LU in place) with ``G = ⊕_h G_h`` block diagonal over the
+    harmonics' contact slots: its columns of harmonic ``h`` are ``K_c[:, h] G_h``, formed pair by pair
+    from the AFT Jacobian ``kc`` (np, 3, C, 3, C) as the transpose of ``G_hᵀ K_cᵀ[h, :]``
+    (:func:`~ringdamper.nonlinear.condensed.apply_contact_jacobian`), so the zero blocks of ``G`` and
+    of ``K_c`` cost nothing."""
+    M = np.empty((model.n_d, model.n_d), order="F")
+    kcT = kc.transpose(0, 3, 4, 1, 2)
+    for h, Gh in enumerate(G):
+        apply_contact_jacobian(Gh.T, kcT, model.fourier.slots(h), model.p, transposed=True,
+                               out=M[:, model._rows(h)])
+    M[np.arange(model.n_d), np.arange(model.n_d)] += 1.0
+    return M
 
 
 def _rest_receptance(model, h: int, omega: float, z: np.ndarray, keep: np.ndarray) -> np.ndarray:

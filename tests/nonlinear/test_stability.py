@@ -181,3 +181,30 @@ def test_tanh_friction_condensed_modes_keep_the_exponents():
         full, part = _exponents(frf, j, band=np.inf), _exponents(frf, j, band=0.0)
         lead = full[np.argsort(-full.real)[:2]]
         assert np.all(np.min(np.abs(part[:, None] - lead), axis=0) <= 5e-4 * np.abs(lead))
+
+
+def test_through_matrix_by_harmonic_blocks_equals_the_dense_product():
+    """``I + K_c G`` of the condensed modes, formed pair by pair on each harmonic's diagonal block of
+    ``G`` (:func:`ringdamper.nonlinear.stability._through_matrix`), equals the sparse ``K_c`` times the
+    dense block-diagonal ``G`` to 1e-14 of its largest entry on the cyclic toy (complex harmonics),
+    at a state whose contact Jacobian couples the harmonics (pairs slipping over part of the period)."""
+    import scipy.linalg as sla
+
+    from ringdamper.nonlinear.condensed import CondensedHBM, structural_damping
+    from ringdamper.nonlinear.stability import _contact_matrix, _modal_blocks, _through_matrix
+
+    from .systems import cyclic_structure
+
+    st, c, _ = cyclic_structure(H=3)
+    model = CondensedHBM(st, c, 3, 36, damping=structural_damping(st, 3, 0.02), forced=True, gamma=1.0)
+    y = 3e-4 * np.random.default_rng(7).standard_normal(model.n_core)
+    ev = model.evaluate(y, 12.0, 0.0)
+    kc = ev.aft.jac
+    off_diagonal = kc.copy()
+    for k in range(model.C):
+        off_diagonal[:, :, k, :, k] = 0.0
+    assert np.any(off_diagonal)                          # the harmonics are coupled
+    G = _modal_blocks(model, 12.0, 0.0)[3]
+    assert sum(np.any(g) for g in G) == model.H + 1      # a condensed receptance on every harmonic
+    dense = np.eye(model.n_d) + _contact_matrix(kc, model.p) @ sla.block_diag(*G)
+    assert np.max(np.abs(_through_matrix(model, kc, G) - dense)) <= 1e-14 * np.max(np.abs(dense))

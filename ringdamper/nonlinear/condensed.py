@@ -269,10 +269,11 @@ class CondensedHBM:
         dr_dw = np.zeros(self.n_core) if jacobian else None
         dr_dx = np.zeros(self.n_core) if jacobian else None
         dLam_dw = self._velocity_term(aft) if jacobian else None
-        etas = []
+        etas, impedances = [], []
         for h in range(H + 1):
             m, S, Cs = self.modal[h], self.S[h], self.Cset[h]
             z, dz_dw, dz_dx = self._modal_impedance(h, omega, xi)
+            impedances.append(z)
             load = (self.gamma * m.f if self.forced else 0.0) - self.PsiH[h] @ Lam[h]
             eta_S = self.eta_explicit(y, h)
             eta = np.empty(m.w2.size, complex)
@@ -297,7 +298,7 @@ class CondensedHBM:
             trivial[:self.n_d] = np.tile(np.repeat(~active, 3), C)
         drift, gauge, rotation = self._gauge(r, (dr_dw, dr_dx) if jacobian else (), y, aft.jac)
         if jacobian:
-            J = CoreJacobian(self, aft.jac, omega, xi, rotation)
+            J = CoreJacobian(self, aft.jac, omega, xi, rotation, impedances)
         return CoreEval(r=r, J=J, dr_domega=dr_dw, dr_dxi=dr_dx, trivial=trivial, d=d, lam=lam,
                         eta=etas, aft=aft, drift=drift, gauge=gauge)
 
@@ -354,7 +355,7 @@ class CondensedHBM:
         z = m.w2 - (h * omega) ** 2 + 1j * h * omega * (c - xi)
         dz_dw = -2.0 * h * h * omega + 1j * h * (c - xi)
         dz_dx = np.full(m.w2.size, -1j * h * omega)
-        return z, np.broadcast_to(dz_dw, z.shape), dz_dx
+        return z, dz_dw, dz_dx
 
     def receptance(self, h: int, omega: float, xi: float, z: np.ndarray) -> np.ndarray:
         """``G_h = Ψ_C diag(1/z_C) Ψ_Cᴴ`` at ``(ω, ξ)`` (``z``: the modal impedances there). Where
@@ -448,9 +449,9 @@ class CoreJacobian:
     factorisation."""
 
     def __init__(self, model: "CondensedHBM", kc: np.ndarray, omega: float, xi: float,
-                 rotation: GaugeRotation | None):
+                 rotation: GaugeRotation | None, z: list):
         self.model, self.kc, self.rotation = model, kc, rotation
-        self.z = [model._modal_impedance(h, omega, xi)[0] for h in range(model.H + 1)]
+        self.z = z                                  # the modal impedances of every harmonic at (ω, ξ)
         self.omega, self.xi = omega, xi
         self.shape = (model.n_core, model.n_core)
 

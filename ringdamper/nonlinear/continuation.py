@@ -294,8 +294,8 @@ def _natural_geometry(z0, s0, tangent0, z1, s1, tangent1, w, mask):
     """Geometry (:func:`_step_geometry`) of the natural step from ``(z0, s0)`` to ``(z1, s1)``
     in ``u = [z/w, s]`` with the tangents ``(dz/ds, 1)`` at both ends, and whether the end
     tangent oriented along the chord points to decreasing ``s`` (a fold in ``s`` between them)."""
-    chord = np.r_[(z1 - z0) / w, s1 - s0]
-    t0, t1 = _unit(np.r_[tangent0 / w, 1.0]), _unit(np.r_[tangent1 / w, 1.0])
+    chord = np.append((z1 - z0) / w, s1 - s0)
+    t0, t1 = _unit(np.append(tangent0 / w, 1.0)), _unit(np.append(tangent1 / w, 1.0))
     if t1 @ chord < 0:
         t1 = -t1
     return _step_geometry(t0, t1, chord, mask), t1[-1] <= 0
@@ -381,7 +381,7 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
         def on_plane(zz, jac):
             r, J, trivial, n_core, payload = fun(zz, jac)
             Jb = bordered(J, rows=plane) if jac else None
-            return np.r_[r, plane @ (zz - zp)], Jb, trivial, n_core, payload
+            return np.append(r, plane @ (zz - zp)), Jb, trivial, n_core, payload
 
         res = newton(on_plane, zp, lambda _: scale, tol, corrector, factorization=fac,
                      give_up_damping=steps.give_up_damping, quasi_newton=steps.quasi_newton)
@@ -617,7 +617,7 @@ class NaturalThenArclength:
         def on_plane(xx, jac):
             r, J, trivial, n_core, payload = self.residual(xx, jac)
             Jb = bordered(J, rows=plane) if jac else None
-            return np.r_[r, plane @ (xx - mid)], Jb, trivial, n_core, payload
+            return np.append(r, plane @ (xx - mid)), Jb, trivial, n_core, payload
 
         res = newton(on_plane, mid, lambda _: sc, self.tol, self.max_iter)
         ok = res.converged and np.linalg.norm((res.z - mid) / sc) <= np.linalg.norm(chord)

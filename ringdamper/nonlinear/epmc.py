@@ -116,11 +116,11 @@ class EPMCProblem:
         y, omega, xi = z[:-2], z[-2], z[-1]
         ev = m.evaluate(y, omega, xi, jacobian)
         n2 = squared_amplitude(ev.eta[1], self.row)
-        r = np.r_[ev.r, 0.5 * np.log(n2) - s, y[self.phase_index]]
+        r = np.concatenate((ev.r, (0.5 * np.log(n2) - s, y[self.phase_index])))
         if not jacobian:
             return r, None, None, m.n_core, ev
         n2, g, d_w, d_x = m.amplitude2(ev, omega, xi, self.row)
-        amplitude = np.r_[g, d_w, d_x] / (2 * n2)
+        amplitude = np.concatenate((g, (d_w, d_x))) / (2 * n2)
         phase = np.zeros(self.n)
         phase[self.phase_index] = 1.0
         J = bordered(ev.J, np.c_[ev.dr_domega, ev.dr_dxi], np.vstack([amplitude, phase]))
@@ -133,7 +133,7 @@ class EPMCProblem:
 
     def scale(self, z: np.ndarray) -> np.ndarray:
         """Convergence scales: :meth:`CondensedHBM.core_scale` for ``y``, ω for ω and ξ."""
-        return np.r_[self.model.core_scale(z[:-2]), abs(z[-2]), abs(z[-2])]
+        return np.concatenate((self.model.core_scale(z[:-2]), (abs(z[-2]), abs(z[-2]))))
 
     def accept(self, z, ev):
         self.model.accept(z[:-2], ev)

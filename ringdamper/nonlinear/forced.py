@@ -39,7 +39,7 @@ class ForcedProblem:
         return fun
 
     def scale(self, z: np.ndarray) -> np.ndarray:
-        return np.r_[self.model.core_scale(z[:-1]), abs(z[-1])]
+        return np.concatenate((self.model.core_scale(z[:-1]), (abs(z[-1]),)))
 
     def linear_guess(self, omega: float, stiffness: np.ndarray) -> np.ndarray:
         """Response of the linearised stuck system (contact springs ``stiffness`` (p,)) at ω,

@@ -81,7 +81,10 @@ def to_real(X: np.ndarray) -> np.ndarray:
 def real_block(A: np.ndarray) -> np.ndarray:
     """Real form of ``Y = A X`` on ``(a; b)`` slots, ``X = a − ib``: ``[[Ar, Ai], [−Ai, Ar]]``."""
     Ar, Ai = A.real, A.imag
-    return np.block([[Ar, Ai], [-Ai, Ar]])
+    m, n = A.shape
+    out = np.empty((2 * m, 2 * n), Ar.dtype)
+    out[:m, :n], out[:m, n:], out[m:, :n], out[m:, n:] = Ar, Ai, -Ai, Ar
+    return out
 
 
 def real_vector(v: np.ndarray) -> np.ndarray:

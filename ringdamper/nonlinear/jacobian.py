@@ -49,7 +49,7 @@ class Bordered:
 
     def matvec(self, v: np.ndarray) -> np.ndarray:
         n = self.A.shape[1]
-        return np.r_[apply(self.A, v[:n]) + self.columns @ v[n:], self.rows @ v]
+        return np.concatenate((apply(self.A, v[:n]) + self.columns @ v[n:], self.rows @ v))
 
     def toarray(self, out: np.ndarray | None = None) -> np.ndarray:
         m, n = self.A.shape

@@ -18,27 +18,34 @@ def play_operator(lo: np.ndarray, hi: np.ndarray, w0: np.ndarray | float = 0.0, 
     state). Without ``sources`` only ``w`` is formed (``src`` None).
     """
     nt = lo.shape[-1]
-    bounds = np.stack([lo, hi])                                   # (2, ..., Nt): the prefix maps' clamps
+    bounds = np.empty((2,) + lo.shape, np.result_type(lo, hi))   # (2, ..., Nt): the prefix maps' clamps
+    bounds[0], bounds[1] = lo, hi
     if sources:
-        index = np.broadcast_to(np.arange(nt), lo.shape)
-        src = np.stack([index, index + nt])
+        src = np.empty((2,) + lo.shape, int)
+        src[0], src[1] = np.arange(nt), np.arange(nt, 2 * nt)
     step = 1
     while step < nt:
         early, a, b = bounds[..., :-step], bounds[0, ..., step:], bounds[1, ..., step:]
         if sources:
             src[..., step:] = _source(early, a, b, src[..., :-step], src[0, ..., step:], src[1, ..., step:])
-        bounds[..., step:] = np.clip(early, a, b)
+        bounds[..., step:] = _clamp(early, a, b)
         step *= 2
     a, b = bounds
     w0 = np.broadcast_to(np.asarray(w0, float), lo.shape[:-1])
-    start = np.clip(w0, a[..., -1], b[..., -1])
-    w = np.clip(start[..., None], a, b)
+    start = _clamp(w0, a[..., -1], b[..., -1])
+    w = _clamp(start[..., None], a, b)
     if not np.array_equal(w[..., -1], start):       # one more period must reproduce the start
         raise RuntimeError("play operator: the marched state is not periodic")
     if not sources:
         return w, None
     start_source = _source(w0, a[..., -1], b[..., -1], -1, src[0, ..., -1], src[1, ..., -1])
     return w, _source(start[..., None], a, b, start_source[..., None], src[0], src[1])
+
+
+def _clamp(x, lo, hi):
+    """``clip(x, lo, hi) = min(max(x, lo), hi)`` as two ufuncs: the same values as ``np.clip``, without its
+    layers of dispatch, which cost more than the arithmetic on the few pairs of a small system."""
+    return np.minimum(np.maximum(x, lo), hi)
 
 
 def _source(x, lo, hi, x_source, lo_source, hi_source):

@@ -14,18 +14,29 @@
   along the same motion (to Hill's truncation at H = 21), also on a free body whose gauged mean
   position is removed; condensing a stiff mode keeps the leading exponents only with the velocity
   force taken through the condensed modes.
+* The matrix ``I + K_c G`` that condenses the modes, formed by harmonic blocks pair by pair, equals the
+  sparse product with the dense block-diagonal ``G``.
 """
 import numpy as np
 import pytest
+import scipy.linalg as sla
 from scipy.integrate import solve_ivp
 
+from ringdamper.nonlinear.condensed import CondensedHBM, structural_damping
 from ringdamper.nonlinear.elements import Elements, TanhFriction
 from ringdamper.nonlinear.frf import forced_response
-from ringdamper.nonlinear.stability import BAND, hill_exponents, modal_hill_matrices
+from ringdamper.nonlinear.stability import (
+    BAND,
+    _contact_matrix,
+    _modal_blocks,
+    _through_matrix,
+    hill_exponents,
+    modal_hill_matrices,
+)
 from ringdamper.nonlinear.structure import Structure
 from ringdamper.studies.method_limits.stability import KAPPA, ZETA, duffing_frf
 
-from .systems import multi_dof, one_dof
+from .systems import cyclic_structure, multi_dof, one_dof
 
 
 def _exponents(frf, j, band=BAND):
@@ -188,13 +199,6 @@ def test_through_matrix_by_harmonic_blocks_equals_the_dense_product():
     ``G`` (:func:`ringdamper.nonlinear.stability._through_matrix`), equals the sparse ``K_c`` times the
     dense block-diagonal ``G`` to 1e-14 of its largest entry on the cyclic toy (complex harmonics),
     at a state whose contact Jacobian couples the harmonics (pairs slipping over part of the period)."""
-    import scipy.linalg as sla
-
-    from ringdamper.nonlinear.condensed import CondensedHBM, structural_damping
-    from ringdamper.nonlinear.stability import _contact_matrix, _modal_blocks, _through_matrix
-
-    from .systems import cyclic_structure
-
     st, c, _ = cyclic_structure(H=3)
     model = CondensedHBM(st, c, 3, 36, damping=structural_damping(st, 3, 0.02), forced=True, gamma=1.0)
     y = 3e-4 * np.random.default_rng(7).standard_normal(model.n_core)

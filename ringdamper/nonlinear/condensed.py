@@ -276,19 +276,21 @@ class CondensedHBM:
             impedances.append(z)
             load = (self.gamma * m.f if self.forced else 0.0) - self.PsiH[h] @ Lam[h]
             eta_S = self.eta_explicit(y, h)
+            zC = z[Cs]
             eta = np.empty(m.w2.size, complex)
-            eta[Cs] = load[Cs] / z[Cs]
+            eta[Cs] = etaC = load[Cs] / zC
             eta[S] = eta_S
             etas.append(eta)
             self._put(r, h, D[h] - m.Psi @ eta, z[S] * eta_S + self._coupled(h, omega, eta_S) - load[S])
             if jacobian:                           # ω and ξ derivatives: only z (and the coupling) depend on them
+                per_impedance = etaC / zC
                 for vec, dz in ((dr_dw, dz_dw), (dr_dx, dz_dx)):
-                    self._put(vec, h, self.PsiC[h] @ ((eta[Cs] / z[Cs]) * dz[Cs]), dz[S] * eta_S)
+                    self._put(vec, h, self.PsiC[h] @ (per_impedance * dz[Cs]), dz[S] * eta_S)
                 if h > 0 and self.coupling[h] is not None:
                     dr_dw[self.eta_slices[h]] += real_vector(self._coupled(h, 1.0, eta_S))
                 if dLam_dw is not None:            # forces that depend on velocity: Λ depends on ω
                     extra = np.zeros(self.n_core)
-                    self._put(extra, h, self.PsiC[h] @ ((self.PsiCH[h] @ dLam_dw[h]) / z[Cs]),
+                    self._put(extra, h, self.PsiC[h] @ ((self.PsiCH[h] @ dLam_dw[h]) / zC),
                               self.PsiSH[h] @ dLam_dw[h])
                     dr_dw += extra
         J = trivial = None

@@ -198,7 +198,8 @@ def _reduction(config: dict) -> dict:
 
 
 def _dnnm(config: dict) -> dict:
-    """dNNM CPU time of the default ring (and its profile) and of the hard rings (ringdamper.bench.dnnm)."""
+    """dNNM CPU time of the default ring (and its profile), of rings at the median cost and of the hard rings
+    (ringdamper.bench.dnnm)."""
     from ringdamper.bench.dnnm import run
 
     return run(config)

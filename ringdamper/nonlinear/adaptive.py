@@ -114,20 +114,21 @@ def time_samples(H: int, base_H: int, base_nt: int) -> int:
 
 
 def _raise(current: Backbone, j: int, H: int, nt: int, tol: float, below: dict,
-           alpha: float, max_arc_points: int | None) -> tuple[Backbone | None, str]:
+           alpha: float, max_arc_points: int | None, models: dict) -> tuple[Backbone | None, str]:
     """Point ``j`` of ``current`` at ``H`` (``below``: the grid point below, H -> (backbone, index),
     at the truncations it was solved at): Newton (at most :data:`RAISE_MAX_ITER` Jacobians) from its
     solution zero-padded; else from that plus the change raising H made to the point below; else
     continuation at ``H`` from the point below. Where many pairs lift off, the zero-padded start can
     be too far for Newton; the continuation is the robust and slow way (on the default ring 8–64 s
-    against 0.5–4 s for Newton)."""
-    higher, why = resolve_point(current, j, H, nt, tol, RAISE_MAX_ITER)
+    against 0.5–4 s for Newton). ``models``: the problems at higher H built so far, shared by the
+    points (:func:`ringdamper.nonlinear.epmc.resolve_point`)."""
+    higher, why = resolve_point(current, j, H, nt, tol, RAISE_MAX_ITER, models=models)
     if higher is not None or H not in below:
         return higher, why
     if current.H in below:
         lower, k = below[current.H]
         higher, why_shift = resolve_point(current, j, H, nt, tol, RAISE_MAX_ITER,
-                                          neighbour=(lower, k, below[H][0]))
+                                          neighbour=(lower, k, below[H][0]), models=models)
         if higher is not None:
             return higher, ""
         why = f"{why}; shifted start: {why_shift}"
@@ -152,6 +153,7 @@ def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, 
     used = np.full(backbone.alpha.size, H0)
     notes, resolved = [], 0
     below: dict = {}                    # H -> (backbone, index) of the grid point below, solved at H
+    models: dict = {}                   # (H, nt) -> the problem at that truncation, built once
     usable = usable_status(values["status"])
     slipping = usable & (values["zeta"] > SLIP_ZETA)
     with np.errstate(invalid="ignore"):                 # stuck: preloaded pairs hold and none slips
@@ -164,7 +166,7 @@ def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, 
         first_change = 0.0
         while H + 2 <= H_max and needs_more_harmonics(point, previous, change_tol, onset):
             higher, why = _raise(current, j, H + 2, time_samples(H + 2, H0, nt0), tol, below,
-                                 backbone.alpha[i], max_arc_points)
+                                 backbone.alpha[i], max_arc_points, models)
             resolved += 1
             if higher is None:
                 notes.append(f"alpha = {backbone.alpha[i]:.4g}: {why}; kept H = {H}")

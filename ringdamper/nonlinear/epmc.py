@@ -354,7 +354,8 @@ def _joined(stuck: list, run, grid) -> NaturalResult:
 
 
 def resolve_point(backbone: Backbone, i: int, H: int, nt: int | None = None, tol: float = 1e-8,
-                  max_iter: int = 20, neighbour: tuple | None = None) -> tuple[Backbone | None, str]:
+                  max_iter: int = 20, neighbour: tuple | None = None,
+                  models: dict | None = None) -> tuple[Backbone | None, str]:
     """Grid point ``i`` of ``backbone`` solved again at ``H`` harmonics (``nt`` AFT samples, default
     :func:`default_nt`) by Newton at its fixed α: ``(one-point backbone, "")``, or ``(None, why)``
     if Newton does not converge. The problem is the backbone's at ``H`` (same structure, which must
@@ -363,23 +364,28 @@ def resolve_point(backbone: Backbone, i: int, H: int, nt: int | None = None, tol
     continuation's correctors (:func:`default_steps`). The start is the point's solution with the
     harmonics above the backbone's set to zero, plus, with ``neighbour = (lower, j, higher)``
     (another grid point: ``lower`` its backbone at this backbone's H, ``j`` its index there,
-    ``higher`` its one-point backbone at ``H``), the change that raising H made to that point."""
+    ``higher`` its one-point backbone at ``H``), the change that raising H made to that point.
+    ``models``: the problems at higher truncations that earlier calls for points of the same backbone
+    built, by ``(H, nt)``; the one needed is taken from it (its gauge state set for point ``i``) or built
+    and added, so that its modal data and receptance series are formed once for all points
+    (:class:`ringdamper.nonlinear.receptance.Receptance`; the series then serves every point within its
+    reach, to rounding)."""
     t0 = time.perf_counter()
-    base = backbone.model
     nt = default_nt(H) if nt is None else nt
-    model = CondensedHBM(base.structure, base.contacts, H, nt,
-                         explicit=pole_modes(base.structure, H, *backbone.pole_window),
-                         damping=structural_damping(base.structure, H))
-    if not all(np.array_equal(a, b) for a, b in zip(base.S, model.S)):
-        raise ValueError("the explicit modes of the shared harmonics differ between the two truncations")
+    model = None if models is None else models.get((H, nt))
+    if model is None:
+        model = _higher_model(backbone, H, nt)
+        if models is not None:
+            models[H, nt] = model
     z0 = _padded_state(backbone, i, model)
     if neighbour is not None:
         lower, j, higher = neighbour
         z0 += higher.state(0) - _padded_state(lower, j, model)
     model.pinned = backbone.pinned[i].copy()
+    model.seen = np.zeros_like(model.pinned[:, :0])
     if model.zero_modes.size:
         model.eta_ref = z0[model.eta_slices[0].start + model.zero_modes].copy()
-    problem = EPMCProblem(model, _same_unknown(base, model, backbone.phase_index), backbone.drift_tol,
+    problem = EPMCProblem(model, _same_unknown(backbone.model, model, backbone.phase_index), backbone.drift_tol,
                           backbone.amplitude)
     s = np.log(backbone.alpha[i])
     res = newton(lambda z, jac: problem.fun(z, s, jac), z0, problem.scale, tol, max_iter, quasi_newton=True)
@@ -389,6 +395,18 @@ def resolve_point(backbone: Backbone, i: int, H: int, nt: int | None = None, tol
                         np.zeros(1, int), [""], [])
     return _collect(run, model, backbone.alpha[i:i + 1], problem, time.perf_counter() - t0,
                     backbone.pole_window), ""
+
+
+def _higher_model(backbone: Backbone, H: int, nt: int) -> CondensedHBM:
+    """The problem of ``backbone`` at ``H`` harmonics and ``nt`` AFT samples: same structure and
+    contacts, the explicit modes of the backbone's pole window (the same modes of the shared harmonics)."""
+    base = backbone.model
+    model = CondensedHBM(base.structure, base.contacts, H, nt,
+                         explicit=pole_modes(base.structure, H, *backbone.pole_window),
+                         damping=structural_damping(base.structure, H))
+    if not all(np.array_equal(a, b) for a, b in zip(base.S, model.S)):
+        raise ValueError("the explicit modes of the shared harmonics differ between the two truncations")
+    return model
 
 
 def _padded_state(backbone: Backbone, i: int, model: CondensedHBM) -> np.ndarray:
@@ -413,6 +431,8 @@ def continue_point(backbone: Backbone, j: int, alpha: float, tol: float = 1e-8, 
     t0 = time.perf_counter()
     model = backbone.model
     z0 = backbone.state(j)
+    model.pinned = backbone.pinned[j].copy()
+    model.seen = np.zeros_like(model.pinned[:, :0])
     if model.zero_modes.size:
         model.eta_ref = z0[model.eta_slices[0].start + model.zero_modes].copy()
     problem = EPMCProblem(model, backbone.phase_index, backbone.drift_tol, backbone.amplitude)

@@ -8,7 +8,7 @@ from ringdamper.fem.model import build_model
 from ringdamper.geometry.sector import build_sector
 from ringdamper.io import check_contract, read_netcdf
 from ringdamper.nonlinear import krylov
-from ringdamper.nonlinear.epmc import epmc, linear_limit, stick_limit
+from ringdamper.nonlinear.epmc import epmc, linear_limit, resolve_point, stick_limit
 from ringdamper.nonlinear.stage import (
     contacts_from_static,
     failed_dnnm,
@@ -264,3 +264,30 @@ def test_where_the_continuation_stopped_is_recorded(chain, monkeypatch):
     assert ds.attrs["unsolved_reason"].startswith(f"alpha = {ds.amplitude.values[first]:.4g}: ")
     assert "step below minimum" in ds.attrs["unsolved_reason"]
     assert first_unsolved_reason(np.array([1e-6, 1e-5]), [0, 3], ["", ""]) == ""
+
+
+def test_raised_points_share_one_problem_with_their_own_gauge_state(chain):
+    """The problem at the higher H is built once for the points of a backbone (``resolve_point(...,
+    models=...)``, as the adaptive pass raises them) and takes each point's gauge state: a point that
+    the contacts hold, solved on it after a point whose rigid-body direction is pinned, equals the point
+    solved on a fresh problem to rounding (coarse ring, H = 1 raised to 3)."""
+    cfg, reduced, static, structure, contacts, target_hz = chain
+    structure = structure_from_reduced(reduced, 3)
+    dnnm = cfg["dnnm"]
+    alpha = np.geomspace(dnnm["amplitude_min"], dnnm["amplitude_max"], dnnm["n_amplitudes"])
+    backbone = epmc(structure, contacts, alpha, H=1,
+                    omega_target=target_stuck_frequency(structure, contacts, target_hz))
+    held = int(np.flatnonzero((backbone.status == 0) & (backbone.zeta > 1e-6))[0])
+    pinned = next(i for i in range(alpha.size) if backbone.pinned[i].shape[1])
+    assert not backbone.pinned[held].shape[1]
+    fresh, why = resolve_point(backbone, held, 3)
+    assert fresh is not None, why
+    models = {}
+    resolve_point(backbone, pinned, 3, models=models)
+    (model,) = models.values()
+    assert model.pinned.shape[1]                    # the state the other point leaves on the problem
+    shared, why = resolve_point(backbone, held, 3, models=models)
+    assert shared is not None, why
+    assert shared.model is model and len(models) == 1
+    np.testing.assert_allclose([shared.omega[0], shared.xi[0]], [fresh.omega[0], fresh.xi[0]], rtol=1e-12)
+    np.testing.assert_allclose(shared.d[0], fresh.d[0], rtol=0, atol=1e-10 * np.max(np.abs(fresh.d[0])))

@@ -207,6 +207,15 @@ class CondensedHBM:
         s = self.S[h].size
         return self.eta_slices[h].start + k + (s if imag else 0)
 
+    def start_at(self, y: np.ndarray, pinned: np.ndarray) -> None:
+        """Gauge state of a solve from a point ``y`` (its unknowns; ω and ξ may follow) that was solved
+        with the rigid-body directions ``pinned``: those pinned, no lost hold seen, and the gauge
+        reference the zero-mode positions of ``y``, whatever solve used the model before."""
+        self.pinned = pinned.copy()
+        self.seen = np.zeros_like(self.pinned[:, :0])
+        if self.zero_modes.size:
+            self.eta_ref = y[self.eta_slices[0].start + self.zero_modes].copy()
+
     def accept(self, y: np.ndarray, ev: "CoreEval") -> None:
         """History update on every accepted continuation point: the gauge reference takes the
         zero-mode positions of ``y`` (an undetermined rigid-body position keeps its last value)

@@ -381,12 +381,9 @@ def resolve_point(backbone: Backbone, i: int, H: int, nt: int | None = None, tol
     if neighbour is not None:
         lower, j, higher = neighbour
         z0 += higher.state(0) - _padded_state(lower, j, model)
-    model.pinned = backbone.pinned[i].copy()
-    model.seen = np.zeros_like(model.pinned[:, :0])
-    if model.zero_modes.size:
-        model.eta_ref = z0[model.eta_slices[0].start + model.zero_modes].copy()
-    problem = EPMCProblem(model, _same_unknown(backbone.model, model, backbone.phase_index), backbone.drift_tol,
-                          backbone.amplitude)
+    model.start_at(z0, backbone.pinned[i])
+    phase = _same_unknown(backbone.model, model, backbone.phase_index)
+    problem = EPMCProblem(model, phase, backbone.drift_tol, backbone.amplitude)
     s = np.log(backbone.alpha[i])
     res = newton(lambda z, jac: problem.fun(z, s, jac), z0, problem.scale, tol, max_iter, quasi_newton=True)
     if not res.converged:
@@ -431,10 +428,7 @@ def continue_point(backbone: Backbone, j: int, alpha: float, tol: float = 1e-8, 
     t0 = time.perf_counter()
     model = backbone.model
     z0 = backbone.state(j)
-    model.pinned = backbone.pinned[j].copy()
-    model.seen = np.zeros_like(model.pinned[:, :0])
-    if model.zero_modes.size:
-        model.eta_ref = z0[model.eta_slices[0].start + model.zero_modes].copy()
+    model.start_at(z0, backbone.pinned[j])
     problem = EPMCProblem(model, backbone.phase_index, backbone.drift_tol, backbone.amplitude)
     run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log([alpha]), problem.scale,
                                  steps or default_steps(), tol, max_iter,

@@ -8,8 +8,8 @@ import yaml
 
 from ringdamper.bench.machine import REFERENCE_ORDER, reference_lu_seconds
 from ringdamper.campaign.adaptive.report import comparison_table, design_row, job_times, trace_table
+from ringdamper.campaign.design_space import read_samples
 from ringdamper.campaign.report_tables import write_html_table
-from ringdamper.campaign.sampling import read_samples
 from ringdamper.logs import to_file
 from ringdamper.plots.adaptive import plot_design, plot_trace
 

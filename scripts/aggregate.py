@@ -1,6 +1,6 @@
 """Rule script: samples.csv + every dnnm.nc -> campaign/dataset.nc (geometry x amplitude)."""
 from ringdamper.campaign.dataset import aggregate, status_summary
-from ringdamper.campaign.sampling import read_samples
+from ringdamper.campaign.design_space import read_samples
 from ringdamper.io import write_netcdf
 from ringdamper.logs import to_file
 

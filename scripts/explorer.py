@@ -1,7 +1,7 @@
 """Rule script: dataset.nc + kriging.nc + optimum.yaml + every static.nc -> explorer.html, the design
 explorer page (docs/explorer.md)."""
+from ringdamper.campaign.design_space import REFERENCE_RINGS
 from ringdamper.campaign.explorer import page_data, write_page
-from ringdamper.campaign.sampling import REFERENCE_RINGS
 from ringdamper.logs import to_file
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)

@@ -51,7 +51,7 @@ def _fe_chain(config: dict) -> dict:
 
 def _static_chain(config: dict) -> dict:
     """mesh -> model -> static contact for the reference rings (per-geometry times)."""
-    from ringdamper.campaign.sampling import REFERENCE_RINGS
+    from ringdamper.campaign.design_space import REFERENCE_RINGS
     from ringdamper.fem.model import build_model
     from ringdamper.geometry.sector import build_sector
     from ringdamper.static.stage import solve_static

@@ -37,12 +37,12 @@ from dataclasses import asdict, dataclass
 import numpy as np
 import xarray as xr
 
-from ringdamper.campaign import sampling
+from ringdamper.campaign import design_space
 from ringdamper.config import ring_axial_center
 from ringdamper.static.closure import pair_closure, station_means
 
 # the paper's seven rings of Figs. 6, 11, 19 (the campaign's reference rings but kappa3 = +1)
-REFERENCE_RINGS = {label: k for label, k in sampling.REFERENCE_RINGS.items() if label != "kappa3=+1"}
+REFERENCE_RINGS = {label: k for label, k in design_space.REFERENCE_RINGS.items() if label != "kappa3=+1"}
 PAPER_ROWS = {
     "default": "N0 greatest at the centre; nodes near the sector boundaries open, with the largest gaps",
     "kappa1=+1": "more nodes in contact than the default; N0 more dispersed",

@@ -15,7 +15,8 @@ from ringdamper.campaign.adaptive.design import candidates
 from ringdamper.campaign.adaptive.model import fit_surrogate
 from ringdamper.campaign.adaptive.rounds import RoundFailedError, predicted_optimum, run_loop, training_dataset
 from ringdamper.campaign.adaptive.stopping import BUDGET, CONVERGED, decide, settled_outputs
-from ringdamper.campaign.sampling import make_samples, maximin_lhs
+from ringdamper.campaign.design_space import maximin_lhs
+from ringdamper.campaign.sampling import make_samples
 from ringdamper.config import ConfigError, load_config, validate_config
 from ringdamper.io import write_netcdf
 from tests.campaign.synthetic import dnnm_dataset

@@ -7,7 +7,8 @@ import pandas as pd
 import pytest
 from scipy.spatial.distance import cdist
 
-from ringdamper.campaign.sampling import make_samples, read_samples
+from ringdamper.campaign.design_space import read_samples
+from ringdamper.campaign.sampling import make_samples
 
 
 def test_campaign_samples(campaign_config):

@@ -16,9 +16,9 @@ import xarray as xr
 import yaml
 
 from ringdamper.campaign.dataset import aggregate, usable_mask
+from ringdamper.campaign.design_space import REFERENCE_RINGS
 from ringdamper.campaign.explorer import page_data, write_page
 from ringdamper.campaign.kriging import OUTPUTS, fit_campaign
-from ringdamper.campaign.sampling import REFERENCE_RINGS
 from ringdamper.io import variable, write_netcdf
 from tests.campaign.synthetic import KAPPA_STAR, design, dnnm_dataset, write_campaign
 

@@ -6,8 +6,8 @@ import re
 import pytest
 import xarray as xr
 
+from ringdamper.campaign.design_space import REFERENCE_RINGS
 from ringdamper.campaign.explorer import MAX_BYTES, page_data
-from ringdamper.campaign.sampling import REFERENCE_RINGS
 from ringdamper.io import InputFileError
 
 from .campaign import ALPHA, N_UNREACHED, build_page, build_tree

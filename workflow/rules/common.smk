@@ -8,7 +8,8 @@ import json
 import yaml
 
 from ringdamper.campaign.adaptive.design import round_of
-from ringdamper.campaign.sampling import REFERENCE_RINGS, make_samples
+from ringdamper.campaign.design_space import REFERENCE_RINGS
+from ringdamper.campaign.sampling import make_samples
 from ringdamper.logs import cpu_record
 
 SAMPLES = make_samples(config["sampling"]).set_index("gid")

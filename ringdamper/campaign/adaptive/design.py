@@ -2,7 +2,7 @@
 
 The initial design holds the reference rings (the default ring, the six one-at-a-time extremes and the
 paper's optimum, computed by every campaign anyway) and ``n_initial - 8`` maximin Latin-hypercube
-points (:func:`~ringdamper.campaign.sampling.maximin_lhs`, away from the reference rings and the
+points (:func:`~ringdamper.campaign.design_space.maximin_lhs`, away from the reference rings and the
 validation rings). The validation rings are exactly those of the paper design: they are drawn from the
 same seeded stream, after the paper's training points, so the honest check does not depend on the
 design. Each round draws its own candidate set, a scrambled Sobol' sequence seeded by (seed, round),
@@ -17,7 +17,7 @@ import pandas as pd
 from scipy.spatial.distance import cdist
 from scipy.stats import qmc
 
-from ..sampling import (
+from ..design_space import (
     N_KAPPA,
     REFERENCE_RINGS,
     SAMPLE_COLUMNS,

@@ -104,13 +104,24 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
     s = check_settings(settings)
     outputs = tuple(outputs)
     dataset, kappa, use, values = _training_inputs(dataset, outputs, mask)
-    n_amp, n_out, dim = dataset.sizes["amplitude"], len(outputs), len(PARAMETERS)
-    scale = np.full((n_out, n_amp, dim), np.nan)
-    nugget, loglik, q2s = (np.full((n_out, n_amp), np.nan) for _ in range(3))
-    status = np.full((n_out, n_amp), STATUS_UNFITTED, dtype=np.int8)
-    n_train = use.sum(axis=0)
+    tasks, keys, transforms = _fit_tasks(dataset, outputs, kappa, use, values, s)
+    fitted = {(out, ia): (rows, *fit) for (out, ia, rows), fit in zip(keys, _fit_all(tasks, workers))}
+    train = {out: np.where(use, values[out], np.nan).T for out in outputs}
+    models = [_output_models(fitted, out, transforms[io], train[out]) for io, out in enumerate(outputs)]
+    per_output = {}
+    for out, m in zip(outputs, models):
+        per_output.update(_output_variables(dataset[out], train[out], m, s))
+    data = {**_model_variables(models, transforms, kappa, use, s), **per_output}
+    return xr.Dataset(data, coords=_fit_coords(dataset, outputs, kappa), attrs=_fit_attrs(s))
+
+
+def _fit_tasks(dataset: xr.Dataset, outputs: tuple, kappa: np.ndarray, use: np.ndarray, values: dict, s: dict):
+    """The fits to run: one ``(x, z, settings, name, constant)`` task of :func:`fit_model` per (output,
+    amplitude) with at least ``min_training`` usable geometries, z = T(y); their keys (output, amplitude
+    index, training rows) and the (output, amplitude) array of transforms T (identity where not fitted)."""
+    n_amp = dataset.sizes["amplitude"]
     tasks, keys = [], []
-    transforms = np.full((n_out, n_amp), Transform(), dtype=object)
+    transforms = np.full((len(outputs), n_amp), Transform(), dtype=object)
     scales = {out: float(np.max(np.abs(values[out]), where=use & np.isfinite(values[out]), initial=0.0))
               for out in outputs}  # the output's magnitude over the campaign: round-off is relative to it
     for io, out in enumerate(outputs):
@@ -129,39 +140,60 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
             constant = finite and is_constant_data(y, scales[out])
             tasks.append((kappa[rows], transforms[io, ia].forward(y), s, name, constant))
             keys.append((out, ia, rows))
-    fitted = {(out, ia): (rows, *fit) for (out, ia, rows), fit in zip(keys, _fit_all(tasks, workers))}
-    per_output = {}
-    for io, out in enumerate(outputs):
-        beta, sigma, factor, offset = (np.full(n_amp, np.nan) for _ in range(4))
-        loo = np.full((n_amp, len(kappa)), np.nan)
-        train = np.where(use, values[out], np.nan).T
-        for ia in range(n_amp):
-            if (out, ia) not in fitted:
-                continue
-            rows, model, ll = fitted[out, ia]
-            status[io, ia] = STATUS_CONSTANT if model.is_constant else STATUS_GP
-            scale[io, ia], nugget[io, ia], loglik[io, ia] = model.scale, model.nugget, ll
-            beta[ia], sigma[ia], factor[ia] = model.beta, model.sigma, model.loo_variance_factor()
-            offset[ia] = transforms[io, ia].offset
-            loo[ia, rows] = _physical_residuals(transforms[io, ia], train[ia, rows], model)
-            q2s[io, ia] = q2(train[ia, rows], loo[ia, rows])
-        units, long_name = dataset[out].attrs.get("units", "1"), dataset[out].attrs.get("long_name", out)
-        latent = Transform(s["transform"].get(out, "identity"))
-        z_units, z_name = latent.units(units), latent.describe(out, units)
-        per_output[out] = variable(("amplitude", "geometry"), train, units,
-                                   f"training values of {long_name} (NaN: not used)")
-        per_output[f"{out}_offset"] = variable("amplitude", offset, units,
-                                               f"offset c of the log transform of {out} (0: identity)")
-        per_output[f"{out}_beta"] = variable("amplitude", beta, z_units, f"Kriging constant trend of {z_name}")
-        per_output[f"{out}_sigma"] = variable("amplitude", sigma, z_units,
-                                              f"Kriging process standard deviation of {z_name}")
-        per_output[f"{out}_variance_factor"] = variable(
-            "amplitude", factor, "1", f"leave-one-out calibration factor of the predictive variance of {out}")
-        per_output[f"{out}_loo_residual"] = variable(("amplitude", "geometry"), loo, units,
-                                                     f"leave-one-out residual of {out} (fixed hyperparameters)")
-    amp_attrs = {"units": "1", "long_name": "modal amplitude", **dataset["amplitude"].attrs}
-    geometry = _geometry_ids(dataset, kappa)
-    data = {
+    return tasks, keys, transforms
+
+
+def _output_models(fitted: dict, out: str, transforms: np.ndarray, train: np.ndarray) -> dict:
+    """The models of output ``out`` by amplitude (``train``: its (amplitude, geometry) training values, NaN
+    where unused): status, θ, nugget, ℓ, β, σ, ψ, log offset c, the leave-one-out residuals of y and Q²
+    (NaN, status unfitted, at an amplitude without a model)."""
+    n_amp = train.shape[0]
+    m = {key: np.full(n_amp, np.nan) for key in ("nugget", "loglik", "beta", "sigma", "factor", "offset", "q2")}
+    m["status"] = np.full(n_amp, STATUS_UNFITTED, dtype=np.int8)
+    m["scale"] = np.full((n_amp, len(PARAMETERS)), np.nan)
+    m["loo"] = np.full(train.shape, np.nan)
+    for ia in range(n_amp):
+        if (out, ia) not in fitted:
+            continue
+        rows, model, ll = fitted[out, ia]
+        m["status"][ia] = STATUS_CONSTANT if model.is_constant else STATUS_GP
+        m["scale"][ia], m["nugget"][ia], m["loglik"][ia] = model.scale, model.nugget, ll
+        m["beta"][ia], m["sigma"][ia], m["factor"][ia] = model.beta, model.sigma, model.loo_variance_factor()
+        m["offset"][ia] = transforms[ia].offset
+        m["loo"][ia, rows] = _physical_residuals(transforms[ia], train[ia, rows], model)
+        m["q2"][ia] = q2(train[ia, rows], m["loo"][ia, rows])
+    return m
+
+
+def _output_variables(y: xr.DataArray, train: np.ndarray, m: dict, s: dict) -> dict:
+    """The variables of one output ``y`` on (amplitude[, geometry]): its training values, log offsets, β, σ
+    (of z = T(y)), variance factors and leave-one-out residuals (of y), from its models ``m``."""
+    out = y.name
+    units, long_name = y.attrs.get("units", "1"), y.attrs.get("long_name", out)
+    latent = Transform(s["transform"].get(out, "identity"))
+    z_units, z_name = latent.units(units), latent.describe(out, units)
+    return {
+        out: variable(("amplitude", "geometry"), train, units, f"training values of {long_name} (NaN: not used)"),
+        f"{out}_offset": variable("amplitude", m["offset"], units,
+                                  f"offset c of the log transform of {out} (0: identity)"),
+        f"{out}_beta": variable("amplitude", m["beta"], z_units, f"Kriging constant trend of {z_name}"),
+        f"{out}_sigma": variable("amplitude", m["sigma"], z_units, f"Kriging process standard deviation of {z_name}"),
+        f"{out}_variance_factor": variable(
+            "amplitude", m["factor"], "1", f"leave-one-out calibration factor of the predictive variance of {out}"),
+        f"{out}_loo_residual": variable(("amplitude", "geometry"), m["loo"], units,
+                                        f"leave-one-out residual of {out} (fixed hyperparameters)"),
+    }
+
+
+def _model_variables(models: list, transforms: np.ndarray, kappa: np.ndarray, use: np.ndarray, s: dict) -> dict:
+    """The variables of the training geometries and of the models on (output, amplitude), ``models`` those
+    of :func:`_output_models` in the order of the outputs."""
+    n_out, n_amp = transforms.shape
+
+    def stacked(key):
+        return np.stack([m[key] for m in models])
+
+    return {
         "kappa": variable(("geometry", "parameter"), kappa, "1",
                           "normalised shape parameters of the training geometries"),
         "training_mask": variable(("amplitude", "geometry"), use.T.astype(np.int8), "1",
@@ -170,23 +202,27 @@ def fit_campaign(dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict
                            "correlation function of the model"),
         "transform": variable(("output", "amplitude"), np.vectorize(lambda t: t.kind, otypes=[object])(transforms),
                               "1", "output transform of the model (identity, log)"),
-        "scale": variable(("output", "amplitude", "parameter"), scale, "1", "correlation length theta per parameter"),
-        "nugget": variable(("output", "amplitude"), nugget, "1", "nugget factor (fraction of sigma^2)"),
-        "status": variable(("output", "amplitude"), status, "1", "model status", flag_values=[0, 1, 2],
+        "scale": variable(("output", "amplitude", "parameter"), stacked("scale"), "1",
+                          "correlation length theta per parameter"),
+        "nugget": variable(("output", "amplitude"), stacked("nugget"), "1", "nugget factor (fraction of sigma^2)"),
+        "status": variable(("output", "amplitude"), stacked("status"), "1", "model status", flag_values=[0, 1, 2],
                            flag_meanings=STATUS_MEANINGS),
-        "n_training": variable(("output", "amplitude"), np.tile(n_train, (n_out, 1)), "1",
+        "n_training": variable(("output", "amplitude"), np.tile(use.sum(axis=0), (n_out, 1)), "1",
                                "number of training points of the model"),
-        "log_likelihood": variable(("output", "amplitude"), loglik, "1", "maximised reduced log-likelihood"),
-        "q2": variable(("output", "amplitude"), q2s, "1", "leave-one-out predictivity coefficient Q2"),
-        **per_output,
+        "log_likelihood": variable(("output", "amplitude"), stacked("loglik"), "1",
+                                   "maximised reduced log-likelihood"),
+        "q2": variable(("output", "amplitude"), stacked("q2"), "1", "leave-one-out predictivity coefficient Q2"),
     }
-    coords = {
+
+
+def _fit_coords(dataset: xr.Dataset, outputs: tuple, kappa: np.ndarray) -> dict:
+    amp_attrs = {"units": "1", "long_name": "modal amplitude", **dataset["amplitude"].attrs}
+    return {
         "output": variable("output", np.array(outputs, dtype=object), "1", "Kriging output"),
         "amplitude": ("amplitude", dataset["amplitude"].values, amp_attrs),
         "parameter": variable("parameter", np.array(PARAMETERS, dtype=object), "1", "shape parameter"),
-        "geometry": variable("geometry", geometry, "1", "training geometry"),
+        "geometry": variable("geometry", _geometry_ids(dataset, kappa), "1", "training geometry"),
     }
-    return xr.Dataset(data, coords=coords, attrs=_fit_attrs(s))
 
 
 def fitted_on(fit: xr.Dataset, dataset: xr.Dataset, outputs=OUTPUTS, mask=None, settings: dict | None = None,

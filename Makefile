@@ -7,7 +7,7 @@ CORES  ?= 2
 # one BLAS/OpenMP thread per process: jobs run side by side on a 2-core machine
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 
-.PHONY: campaign test test-explorer test-cluster bench studies fidelity explorer paper-design report lint clean
+.PHONY: campaign test test-explorer test-cluster bench performance studies fidelity explorer paper-design report lint clean
 
 $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV) || python3 -m venv $(VENV)
@@ -38,6 +38,13 @@ test-cluster: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python -m ringdamper.bench --out results/benchmarks
+
+# the performance page docs/performance.md (docs/artifacts.yaml, route `performance`): the figures of the
+# campaign in results/ (its tables and job records) and of `make bench` (results/benchmarks/*.json), by
+# the generator the workflow's rule `performance_table` runs, without asking Snakemake about the campaign
+performance: $(STAMP)
+	$(BIN)/python -m ringdamper.performance --results results --out results/tables/performance.md
+	$(BIN)/python -m ringdamper.publish performance
 
 # the studies behind the model's choices (config.yaml `studies:`), then their committed tables and figures
 # (docs/artifacts.yaml, route `studies`)

@@ -155,3 +155,26 @@ rule study_charts:
     input:
         [chart for chart in STUDY_CHARTS if Path(chart).exists()],
     localrule: True
+
+
+# The performance page (docs/performance.md, route `performance` of docs/artifacts.yaml): the campaign's
+# figures from its tables and job records, and `make bench`'s from results/benchmarks/*.json when present
+# (not an input: `make bench` runs outside the workflow). Not part of `all`: `make performance` asks for it.
+rule performance_table:
+    input:
+        row=f"{RESULTS}/tables/design_row.csv",
+        samples=f"{RESULTS}/samples.csv",
+    output:
+        f"{RESULTS}/tables/performance.md",
+    params:
+        results=RESULTS,
+    threads: 1
+    resources:
+        mem_mb=scaled(300),
+        runtime=5,
+    log:
+        log_file("performance_table"),
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/performance_table.py"

@@ -1,7 +1,8 @@
 """The machine a benchmark ran on, and its speed in the operation the dNNM spends most of its time on.
 
 Benchmark seconds compare only on one machine: the same code took about 2.7 times longer a core on an
-AMD EPYC with AVX2 only (Zen 1) than on one with AVX-512 (docs/design.md §8). Every
+AMD EPYC with AVX2 only (Zen 1) than on one with AVX-512
+(docs/investigations/2026-12-01-campaign-timings.md). Every
 ``make bench`` file therefore records the CPU, the BLAS library with the kernel it loaded (OpenBLAS
 chooses one for the CPU at start-up, ``threadpoolctl``'s ``architecture``) and the CPU time of a
 *reference LU*: LAPACK's ``dgetrf`` of a dense real matrix of order :data:`REFERENCE_ORDER`, the size of

@@ -5,7 +5,8 @@ For each listed round k of a finished adaptive campaign, the per-amplitude Krigi
 by rounds < k; k = last round + 1 is the final set), then validated on the 20 validation rings exactly
 as the campaign's `validation` rule does: R², RMSE and ±2σ coverage per output, the normalised
 leave-one-out errors of the stop rule, and the predicted optimum. Rings chosen later never enter, so
-the table shows what stopping at round k would have given (docs/adaptive.md, "Measured").
+the table shows what stopping at round k would have given
+(docs/investigations/2026-12-01-adaptive-campaigns.md).
 
     python -m tools.adaptive_retrospective RESULTS OUT.csv [--rounds 1 3 4 5 8]
 """

@@ -121,6 +121,16 @@ def bench_rows(benchmarks: Path) -> list[dict]:
                  _row("bench", "Table 3 forced response, default ring, slowest", max(seconds), "s",
                       f"{src}: frf_table3")]
     rows += _dnnm_rows(found.get("dnnm", {}))
+    if "modal_stage_s" in found.get("fe_model", {}):
+        rows.append(_row("bench", "modal stage, default ring", found["fe_model"]["modal_stage_s"], "s",
+                         "benchmarks/fe_model.json: modal_stage_s"))
+    synthetic = found.get("static_synthetic", {})
+    for element in ("Q2", "Q1"):
+        for method in ("penalty", "lagrange"):
+            if method in synthetic.get(element, {}):
+                rows.append(_row("bench", f"static solver, two blocks, {element}, {method}",
+                                 synthetic[element][method]["solve_s"], "s",
+                                 f"benchmarks/static_synthetic.json: {element}.{method}.solve_s"))
     for name, quantity in (("reduction", "reduction benchmark, whole"), ("surrogate", "Kriging + grid + Sobol"),
                            ("library", "NLvib examples 05 and 07")):
         if "total_wall_s" in found.get(name, {}):

@@ -41,6 +41,9 @@ def results(tmp_path):
     _write(r / "benchmarks" / "dnnm.json", json.dumps({
         "machine": MACHINE, "default": {"cpu_s": 8.5, "cpu_reference_lus": 154.3}, "median_cpu_s": 6.25,
         "cpu_max_over_median": 4.125, "peak_rss_mb": 700.0, "total_wall_s": 90.0}))
+    _write(r / "benchmarks" / "static_synthetic.json", json.dumps({
+        "machine": MACHINE, "Q2": {"element": "Q2", "penalty": {"solve_s": 3.75}, "lagrange": {"solve_s": 4.25}},
+        "Q1": {"element": "Q1", "penalty": {"solve_s": 3.5}}}))
     return r
 
 
@@ -62,6 +65,8 @@ def test_the_page_prints_the_values_of_its_inputs(results):
         "dNNM CPU, default ring": "8.5", "dNNM CPU, default ring, in reference LUs": "154.3",
         "dNNM CPU, median of the median-cost rings": "6.25", "dNNM CPU, slowest ring over that median": "4.125",
         "peak memory, largest (dnnm)": "700",
+        "static solver, two blocks, Q2, penalty": "3.75", "static solver, two blocks, Q2, lagrange": "4.25",
+        "static solver, two blocks, Q1, penalty": "3.5",
     }
     assert {k: page.get(k) for k in expected} == expected
 

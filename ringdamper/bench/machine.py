@@ -69,5 +69,6 @@ def reference_lu_seconds(order: int = REFERENCE_ORDER, repeats: int = REPEATS, s
 def describe() -> dict:
     """The machine record of a benchmark file (module docstring)."""
     return {"cpus": mp.cpu_count(), "cpu_model": cpu_model(), "python": platform.python_version(),
+            "load_average_1min": os.getloadavg()[0],
             "blas_threads": os.environ.get("OPENBLAS_NUM_THREADS"), "blas": blas_libraries(),
             "reference_lu_order": REFERENCE_ORDER, "reference_lu_s": reference_lu_seconds()}

@@ -167,7 +167,7 @@ rule performance_table:
     output:
         f"{RESULTS}/tables/performance.md",
     params:
-        results=RESULTS,
+        results=lambda wildcards, input: str(Path(input.samples).parent),
     threads: 1
     resources:
         mem_mb=scaled(300),

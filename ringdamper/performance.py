@@ -125,7 +125,7 @@ def bench_rows(benchmarks: Path) -> list[dict]:
                       f"{src}: frf_table3.cpu_seconds")]
     rows += _dnnm_rows(found.get("dnnm", {}))
     if "modal_stage_s" in found.get("fe_model", {}):
-        rows.append(_row("bench", "modal stage, default ring", found["fe_model"]["modal_stage_s"], "s",
+        rows.append(_row("bench", "modal stage, default ring, wall", found["fe_model"]["modal_stage_s"], "s",
                          "benchmarks/fe_model.json: modal_stage_s"))
     synthetic = found.get("static_synthetic", {})
     for element in ("Q2", "Q1"):

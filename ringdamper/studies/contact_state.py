@@ -40,6 +40,7 @@ import xarray as xr
 from ringdamper.campaign import design_space
 from ringdamper.config import ring_axial_center
 from ringdamper.static.closure import pair_closure, station_means
+from ringdamper.static.surface import sector_position
 
 # the paper's seven rings of Figs. 6, 11, 19 (the campaign's reference rings but kappa3 = +1)
 REFERENCE_RINGS = {label: k for label, k in design_space.REFERENCE_RINGS.items() if label != "kappa3=+1"}
@@ -81,7 +82,7 @@ def _weighted_mean(x, w) -> float:
 def contact_variety(static: xr.Dataset, half_angle: float) -> Variety:
     """:class:`Variety` of a ``static.nc`` dataset (pair positions x, y at rest, N0, gap, area) of a
     sector of half angle ``half_angle`` (rad) centred on the X axis."""
-    s = np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle
+    s = sector_position(static, half_angle)
     n0, gap, area = static.N0.values, static.gap.values, static.area.values
     stations, station = np.unique(np.round(s, 9), return_inverse=True)
     p = np.bincount(station, n0) / np.bincount(station, area)
@@ -242,7 +243,7 @@ def closure_summary(static: xr.Dataset, half_angle: float) -> dict:
     would just touch on average), the spread of the means of its axial stations (the arm's taper) and
     its sector-periodic part, the mean of the boundary station minus that of the centre station
     (> 0: the boundaries close more, so they carry N0 and the centre opens first). All in m."""
-    s = np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle
+    s = sector_position(static, half_angle)
     closure = pair_closure(static)
     _, theta_means = station_means(static, s)
     _, z_means = station_means(static, static.z.values)

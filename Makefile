@@ -80,6 +80,7 @@ report: $(STAMP)
 lint: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/snakemake --lint
+	$(BIN)/python -m tools.function_lengths
 
 clean:
 	rm -rf results .snakemake

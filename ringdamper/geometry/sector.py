@@ -122,66 +122,93 @@ def _merge(points: np.ndarray) -> np.ndarray:
     return rep[rep]
 
 
-def build_sector(config: dict, kappa) -> SectorMesh:
-    """Mesh the sector for shape ``kappa`` with the geometry and mesh sections of ``config``."""
-    g, mcfg = config["geometry"], config["mesh"]
-    blade, disk, ring = g["blade"], g["disk"], g["ring"]
-    kappa = np.asarray(kappa, dtype=float)
-    d1, d2, d3 = shape_offsets(kappa, g["shape"])
-    th = np.pi / g["n_sectors"]
-    r_bore, r_c = disk["bore_radius"], disk["contact_radius"]
-    r_root, r_tip = blade["tip_radius"] - blade["height"], blade["tip_radius"]
-    t_b, chord = blade["thickness"], blade["chord"]
-    half_w, web = disk["rim_axial_width"] / 2, disk["web_thickness"] / 2
-    z_lo, z_hi = ring["axial_center"] - ring["width"] / 2, ring["axial_center"] + ring["width"] / 2
+@dataclass(frozen=True)
+class _Frame:
+    """The sector's radii (m), angles (rad) and axial positions (m) the blocks are laid out on."""
 
-    th_b = 0.5 * t_b / r_root
-    # breakpoints at the lower bumps' ends and centres (+-th/3, +-2th/3) and at the blade faces
-    n3 = mcfg["n_theta_per_third"]
-    side = [_segment(th / 3, th_b, n3), _segment(2 * th / 3, th / 3, n3), _segment(th, 2 * th / 3, n3)]
-    theta = _join(*[-seg for seg in side], _segment(-th_b, th_b, mcfg["n_blade_thickness"]), *side)
-    r_arm = r_c + disk["arm_thickness"]
-    z_rim = _join(_segment(-half_w, -web, mcfg["n_z_front"]), _segment(-web, web, mcfg["n_z_web"]),
-                  _segment(web, half_w, mcfg["n_z_rim_back"]), [-chord / 2, chord / 2])
-    z_arm = _join(_segment(half_w, z_lo, mcfg["n_z_gap"]), _segment(z_lo, z_hi, mcfg["n_z_ring"]),
-                  _segment(z_hi, half_w + disk["arm_length"], mcfg["n_z_back"]))
-    r_rim = _join(_segment(r_c, r_arm, mcfg["n_r_arm"]), _segment(r_arm, r_root, mcfg["n_r_rim"]))
-    z_web = z_rim[(z_rim >= -web - MERGE_TOL) & (z_rim <= web + MERGE_TOL)]
-    z_ring = z_arm[(z_arm >= z_lo - MERGE_TOL) & (z_arm <= z_hi + MERGE_TOL)]
-    z_blade = z_rim[np.abs(z_rim) <= chord / 2 + MERGE_TOL]
-    s_blade = _segment(-t_b / 2, t_b / 2, mcfg["n_blade_thickness"])
+    th: float           # half sector angle pi / N
+    r_bore: float
+    r_c: float          # contact radius: the groove's radius at rest
+    r_arm: float        # outer surface of the arm
+    r_root: float
+    r_tip: float
+    t_b: float          # blade thickness
+    chord: float
+    half_w: float       # half the rim's axial width
+    web: float          # half the web thickness under the rim
+    z_lo: float         # the ring's axial band z_lo .. z_hi
+    z_hi: float
+    z_arm_end: float    # axial end of the arm
 
-    def in_band(z):
-        return (z >= z_lo - MERGE_TOL) & (z <= z_hi + MERGE_TOL)
+    @classmethod
+    def of(cls, g: dict) -> _Frame:
+        blade, disk, ring = g["blade"], g["disk"], g["ring"]
+        half_w = disk["rim_axial_width"] / 2
+        return cls(th=np.pi / g["n_sectors"], r_bore=disk["bore_radius"], r_c=disk["contact_radius"],
+                   r_arm=disk["contact_radius"] + disk["arm_thickness"],
+                   r_root=blade["tip_radius"] - blade["height"], r_tip=blade["tip_radius"],
+                   t_b=blade["thickness"], chord=blade["chord"], half_w=half_w, web=disk["web_thickness"] / 2,
+                   z_lo=ring["axial_center"] - ring["width"] / 2, z_hi=ring["axial_center"] + ring["width"] / 2,
+                   z_arm_end=half_w + disk["arm_length"])
+
+    def in_band(self, z):
+        """True within the ring's axial band (MERGE_TOL included)."""
+        return (z >= self.z_lo - MERGE_TOL) & (z <= self.z_hi + MERGE_TOL)
+
+
+def _block_maps(f: _Frame, disk: dict, ring_thickness: float, deltas: tuple) -> list:
+    """(part, map from logical to Cartesian coordinates) of every block, in PART_* order (module docstring)."""
+    d1, d2, d3 = deltas
 
     def arm_map(r, t, z):
-        fade = (r_arm - r) / (r_arm - r_c)
-        return _cartesian(r + upper_offset(t, th, d1) * in_band(z) * fade, t, z)
+        fade = (f.r_arm - r) / (f.r_arm - f.r_c)
+        return _cartesian(r + upper_offset(t, f.th, d1) * f.in_band(z) * fade, t, z)
 
     def ring_map(xi, t, z):
-        r_up = r_c + upper_offset(t, th, d1)
-        r_low = r_c - ring["thickness"] + lower_offset(t, th, d2, d3)
+        r_up = f.r_c + upper_offset(t, f.th, d1)
+        r_low = f.r_c - ring_thickness + lower_offset(t, f.th, d2, d3)
         return _cartesian(r_low + xi * (r_up - r_low), t, z)
 
     taper = disk["hub_thickness"] / disk["web_thickness"] - 1.0
 
     def web_map(r, t, z):
-        return _cartesian(r, t, z * (1.0 + taper * (r_c - r) / (r_c - r_bore)))
+        return _cartesian(r, t, z * (1.0 + taper * (f.r_c - r) / (f.r_c - f.r_bore)))
 
     def blade_map(r, s, z):
         return _cartesian(r, s / r, z)
 
-    maps = [  # (part, map), in PART_* order
-        (PART_WEB, web_map), (PART_RIM, _cartesian), (PART_BLADE, blade_map), (PART_RING, ring_map),
-        (PART_ARM, arm_map)]
-    lines = {
-        PART_WEB: (_segment(r_bore, r_c, mcfg["n_r_web"]), theta, z_web),
+    return [(PART_WEB, web_map), (PART_RIM, _cartesian), (PART_BLADE, blade_map), (PART_RING, ring_map),
+            (PART_ARM, arm_map)]
+
+
+def _block_lines(f: _Frame, mcfg: dict) -> dict:
+    """part -> its block's logical grid lines (a, b, c) from the ``mesh`` section's counts."""
+    th_b = 0.5 * f.t_b / f.r_root
+    # breakpoints at the lower bumps' ends and centres (+-th/3, +-2th/3) and at the blade faces
+    n3 = mcfg["n_theta_per_third"]
+    side = [_segment(f.th / 3, th_b, n3), _segment(2 * f.th / 3, f.th / 3, n3), _segment(f.th, 2 * f.th / 3, n3)]
+    theta = _join(*[-seg for seg in side], _segment(-th_b, th_b, mcfg["n_blade_thickness"]), *side)
+    z_rim = _join(_segment(-f.half_w, -f.web, mcfg["n_z_front"]), _segment(-f.web, f.web, mcfg["n_z_web"]),
+                  _segment(f.web, f.half_w, mcfg["n_z_rim_back"]), [-f.chord / 2, f.chord / 2])
+    z_arm = _join(_segment(f.half_w, f.z_lo, mcfg["n_z_gap"]), _segment(f.z_lo, f.z_hi, mcfg["n_z_ring"]),
+                  _segment(f.z_hi, f.z_arm_end, mcfg["n_z_back"]))
+    r_rim = _join(_segment(f.r_c, f.r_arm, mcfg["n_r_arm"]), _segment(f.r_arm, f.r_root, mcfg["n_r_rim"]))
+    z_web = z_rim[(z_rim >= -f.web - MERGE_TOL) & (z_rim <= f.web + MERGE_TOL)]
+    z_ring = z_arm[f.in_band(z_arm)]
+    z_blade = z_rim[np.abs(z_rim) <= f.chord / 2 + MERGE_TOL]
+    s_blade = _segment(-f.t_b / 2, f.t_b / 2, mcfg["n_blade_thickness"])
+    return {
+        PART_WEB: (_segment(f.r_bore, f.r_c, mcfg["n_r_web"]), theta, z_web),
         PART_RIM: (r_rim, theta, z_rim),
-        PART_ARM: (_segment(r_c, r_arm, mcfg["n_r_arm"]), theta, z_arm),
-        PART_BLADE: (_segment(r_root, r_tip, mcfg["n_blade_height"]), s_blade, z_blade),
+        PART_ARM: (_segment(f.r_c, f.r_arm, mcfg["n_r_arm"]), theta, z_arm),
+        PART_BLADE: (_segment(f.r_root, f.r_tip, mcfg["n_blade_height"]), s_blade, z_blade),
         PART_RING: (_segment(0.0, 1.0, mcfg["n_r_ring"]), theta, z_ring),
     }
-    blocks = [(part, _block(*lines[part], to_xyz)) for part, to_xyz in maps]
+
+
+def _stack_blocks(blocks: list):
+    """The blocks' ``(part, (points, hexes, logical))`` in one numbering: points, hexes, the part of each
+    element, the logical coordinates and the owning part of each point."""
     points, hexes, parts, logicals, owners = [], [], [], [], []
     offset = 0
     for part, (p, h, lg) in blocks:
@@ -191,38 +218,56 @@ def build_sector(config: dict, kappa) -> SectorMesh:
         logicals.append(lg)
         owners.append(np.full(len(p), part))
         offset += len(p)
-    points, hexes = np.vstack(points), np.vstack(hexes)
-    logical, owner = np.vstack(logicals), np.concatenate(owners)
-    element_part = np.concatenate(parts)
-    element_logical = logical[hexes]  # (e, 8, 3), before merging: each element in its own block
+    return np.vstack(points), np.vstack(hexes), np.concatenate(parts), np.vstack(logicals), np.concatenate(owners)
 
-    # merge coincident vertices inside the blisk only (the ring stays a separate body)
+
+def _merge_blisk(points, hexes, logical, owner):
+    """Merge coincident vertices inside the blisk only (the ring stays a separate body): the points,
+    hexes, logical coordinates and owners renumbered."""
     rep = np.arange(len(points))
     blisk = np.flatnonzero(owner != PART_RING)
     rep[blisk] = blisk[_merge(points[blisk])]
     used, new_index = np.unique(rep, return_inverse=True)
-    hexes = new_index[hexes]
-    points, logical, owner = points[used], logical[used], owner[used]
+    return points[used], new_index[hexes], logical[used], owner[used]
 
-    if mcfg["element_order"] == 2:
-        mesh = _isoparametric(points, hexes, element_logical, element_part,
-                              [to_xyz for _, to_xyz in maps])
-    else:
-        mesh = MeshHex1(points.T.copy(), hexes.T.astype(np.int32).copy())
+
+def _vertex_sets(f: _Frame, points, logical, owner) -> tuple[dict, int]:
+    """The named vertex sets (bore, cyclic faces left/right, ring top, groove) and the tip vertex (blade
+    tip, leading edge, suction side)."""
     r = np.hypot(points[:, 0], points[:, 1])
     ang = np.arctan2(points[:, 1], points[:, 0])
     is_ring = owner == PART_RING
     sets = {
-        "bore": np.flatnonzero(~is_ring & (np.abs(r - r_bore) < MERGE_TOL)),
-        "left": np.flatnonzero(np.abs(ang + th) < 1e-12),
-        "right": np.flatnonzero(np.abs(ang - th) < 1e-12),
+        "bore": np.flatnonzero(~is_ring & (np.abs(r - f.r_bore) < MERGE_TOL)),
+        "left": np.flatnonzero(np.abs(ang + f.th) < 1e-12),
+        "right": np.flatnonzero(np.abs(ang - f.th) < 1e-12),
         "ring_top": np.flatnonzero(is_ring & (np.abs(logical[:, 0] - 1.0) < 1e-12)),
-        "groove": np.flatnonzero((owner == PART_ARM) & (np.abs(logical[:, 0] - r_c) < MERGE_TOL)
-                                 & in_band(points[:, 2])),
+        "groove": np.flatnonzero((owner == PART_ARM) & (np.abs(logical[:, 0] - f.r_c) < MERGE_TOL)
+                                 & f.in_band(points[:, 2])),
     }
-    tip = np.flatnonzero((owner == PART_BLADE) & (np.abs(logical[:, 0] - r_tip) < MERGE_TOL)
-                         & (np.abs(logical[:, 1] + t_b / 2) < MERGE_TOL)
-                         & (np.abs(points[:, 2] + chord / 2) < MERGE_TOL))
+    tip = np.flatnonzero((owner == PART_BLADE) & (np.abs(logical[:, 0] - f.r_tip) < MERGE_TOL)
+                         & (np.abs(logical[:, 1] + f.t_b / 2) < MERGE_TOL)
+                         & (np.abs(points[:, 2] + f.chord / 2) < MERGE_TOL))
+    return sets, int(tip[0])
+
+
+def build_sector(config: dict, kappa) -> SectorMesh:
+    """Mesh the sector for shape ``kappa`` with the geometry and mesh sections of ``config``."""
+    g, mcfg = config["geometry"], config["mesh"]
+    kappa = np.asarray(kappa, dtype=float)
+    deltas = shape_offsets(kappa, g["shape"])
+    f = _Frame.of(g)
+    maps = _block_maps(f, g["disk"], g["ring"]["thickness"], deltas)
+    lines = _block_lines(f, mcfg)
+    points, hexes, element_part, logical, owner = _stack_blocks(
+        [(part, _block(*lines[part], to_xyz)) for part, to_xyz in maps])
+    element_logical = logical[hexes]  # (e, 8, 3), before merging: each element in its own block
+    points, hexes, logical, owner = _merge_blisk(points, hexes, logical, owner)
+    if mcfg["element_order"] == 2:
+        mesh = _isoparametric(points, hexes, element_logical, element_part, [to_xyz for _, to_xyz in maps])
+    else:
+        mesh = MeshHex1(points.T.copy(), hexes.T.astype(np.int32).copy())
+    sets, tip = _vertex_sets(f, points, logical, owner)
     return SectorMesh(mesh=mesh, vertices=points, part=element_part,
-                      vertex_body=np.where(is_ring, BODY_RING, BODY_BLISK), kappa=kappa,
-                      deltas=(d1, d2, d3), half_angle=th, sets=sets, tip_vertex=int(tip[0]))
+                      vertex_body=np.where(owner == PART_RING, BODY_RING, BODY_BLISK), kappa=kappa,
+                      deltas=tuple(deltas), half_angle=f.th, sets=sets, tip_vertex=tip)

@@ -81,7 +81,8 @@ def run_modal_stage(config: dict, in_contact=None) -> ModalResults:
     nd_ds = xr.Dataset(
         {"frequency": variable(("nd", "mode"), freq, "Hz", "natural frequency at operating speed"),
          "omega0": variable(("nd", "mode"), normalised_frequency(freq, reference_hz), "1",
-                            "normalised frequency 2.195 f / f_stuck,default"),
+                            "normalised frequency 2.195 f / f_cross, f_cross the target mode's frequency "
+                            "at the engine-order crossing (reference_frequency_hz)"),
          "family": variable(("nd", "mode"), labels, "1", "mode family (1B, 1T, 2B, 1D, 2D, ...)"),
          "blade_energy_fraction": variable(("nd", "mode"), blade, "1",
                                            "fraction of the strain energy in the blade")},

@@ -7,19 +7,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ..static.closure import pair_closure, station_means
-
-
-def surface_coords(ds):
-    """Circumferential arc position (mm, from the sector centre) and axial position (mm)."""
-    theta = np.arctan2(ds.y.values, ds.x.values)
-    radius = np.hypot(ds.x.values, ds.y.values)
-    return 1e3 * radius * theta, 1e3 * ds.z.values
+from ..static.surface import sector_position, surface_coords
 
 
 def draw_surface_map(ax, static, values, vmax, cmap, title, label=None):
     """Per-pair ``values`` over the ring's upper surface of ``static`` on ``ax``, colour scale
     [0, vmax] with a colour bar (``label``)."""
-    s, z = surface_coords(static)
+    s, z = (1e3 * v for v in surface_coords(static))  # m -> mm
     sc = ax.scatter(s, z, c=values, vmin=0, vmax=vmax, cmap=cmap, s=40, marker="s")
     ax.set_title(title, fontsize=8)
     ax.set_ylabel("z (mm)", fontsize=8)
@@ -119,7 +113,7 @@ def plot_free_closure(states: dict, configured: str, half_angle: float, path) ->
     centrifugal load, what a contact would absorb, and how little of it is sector-periodic."""
     fig, (ax, bx, cx) = plt.subplots(1, 3, figsize=(15, 4.2))
     static = states[configured][0]
-    s = np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle
+    s = sector_position(static, half_angle)
     closure = 1e6 * pair_closure(static)
     z = np.round(1e3 * static.z.values, 3)
     for zv in np.unique(z):
@@ -129,7 +123,7 @@ def plot_free_closure(states: dict, configured: str, half_angle: float, path) ->
     ax.set_ylabel("closure d_n without contact (um)")
     ax.set_title(f"{configured}: every pair (spread {np.ptp(closure):.2f} um)", fontsize=8)
     for label, (ds, imprint) in states.items():
-        stations, mean = station_means(ds, np.abs(np.arctan2(ds.y.values, ds.x.values)) / half_angle)
+        stations, mean = station_means(ds, sector_position(ds, half_angle))
         bx.plot(stations, 1e6 * (mean - mean[0]), marker="o", ms=3,
                 label=f"{label} (spread {1e6 * np.ptp(mean):.3f} um)")
         cx.plot(1e3 * imprint.z.values, 1e6 * (imprint.boundary.values - imprint.centre.values),

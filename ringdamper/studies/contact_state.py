@@ -40,6 +40,7 @@ import xarray as xr
 from ringdamper.campaign import design_space
 from ringdamper.config import ring_axial_center
 from ringdamper.static.closure import pair_closure, station_means
+from ringdamper.static.surface import sector_position
 
 # the paper's seven rings of Figs. 6, 11, 19 (the campaign's reference rings but kappa3 = +1)
 REFERENCE_RINGS = {label: k for label, k in design_space.REFERENCE_RINGS.items() if label != "kappa3=+1"}
@@ -81,7 +82,7 @@ def _weighted_mean(x, w) -> float:
 def contact_variety(static: xr.Dataset, half_angle: float) -> Variety:
     """:class:`Variety` of a ``static.nc`` dataset (pair positions x, y at rest, N0, gap, area) of a
     sector of half angle ``half_angle`` (rad) centred on the X axis."""
-    s = np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle
+    s = sector_position(static, half_angle)
     n0, gap, area = static.N0.values, static.gap.values, static.area.values
     stations, station = np.unique(np.round(s, 9), return_inverse=True)
     p = np.bincount(station, n0) / np.bincount(station, area)
@@ -148,6 +149,22 @@ def support_of(config: dict) -> dict:
     return {k: float(config["geometry"]["disk"][k]) for k in SUPPORT}
 
 
+def configured_design(config: dict) -> dict:
+    """The model's own design: its radial clearance, kn per area and groove support."""
+    return {"radial_clearance": config["geometry"]["ring"]["radial_clearance"],
+            "normal_stiffness_per_area": config["contact"]["normal_stiffness_per_area"], **support_of(config)}
+
+
+def support_label(support: dict) -> str:
+    """``arm <thickness> x <length> mm`` of a groove support."""
+    return f"arm {1e3 * support['arm_thickness']:g} x {1e3 * support['arm_length']:g} mm"
+
+
+def sector_half_angle(config: dict) -> float:
+    """The sector's half angle θ_h = π / N (rad)."""
+    return np.pi / config["geometry"]["n_sectors"]
+
+
 def _static_states(config: dict, kappa, designs) -> list[xr.Dataset]:
     """``static.nc`` datasets of ring ``kappa`` for each (clearance, kn per area) of ``designs``,
     meshing and assembling the sector once (the groove support is ``config``'s)."""
@@ -183,7 +200,7 @@ def search(config: dict) -> tuple[list[dict], list[dict]]:
     :class:`Variety` and the row verdict; one row per design: the number of the paper's rows
     reproduced). Each groove support is meshed once per ring; the contact designs re-solve it."""
     grid = config["studies"]["contact_state"]
-    half_angle = np.pi / config["geometry"]["n_sectors"]
+    half_angle = sector_half_angle(config)
     designs = list(itertools.product(grid["radial_clearance"], grid["normal_stiffness_per_area"]))
     ring_rows, design_rows = [], []
     for thickness, length in itertools.product(grid["arm_thickness"], grid["arm_length"]):
@@ -242,12 +259,32 @@ def closure_summary(static: xr.Dataset, half_angle: float) -> dict:
     would just touch on average), the spread of the means of its axial stations (the arm's taper) and
     its sector-periodic part, the mean of the boundary station minus that of the centre station
     (> 0: the boundaries close more, so they carry N0 and the centre opens first). All in m."""
-    s = np.abs(np.arctan2(static.y.values, static.x.values)) / half_angle
+    s = sector_position(static, half_angle)
     closure = pair_closure(static)
     _, theta_means = station_means(static, s)
     _, z_means = station_means(static, static.z.values)
     return {"mean_closure": float(closure.mean()), "axial_spread": float(np.ptp(z_means)),
             "periodic_part": float(theta_means[-1] - theta_means[0])}
+
+
+def closure_supports(config: dict) -> list[dict]:
+    """The groove supports of the free-closure chart: the grid's ``arm_thickness`` × ``arm_length`` of
+    ``studies.contact_state``, then the configured support when the grid does not hold it."""
+    grid = config["studies"]["contact_state"]
+    supports = [{"arm_thickness": t, "arm_length": length}
+                for t, length in itertools.product(grid["arm_thickness"], grid["arm_length"])]
+    return supports + [support_of(config)] * (support_of(config) not in supports)
+
+
+def free_closures(config: dict) -> tuple[list[dict], dict]:
+    """The :func:`free_closure` at ``studies.contact_state.free_clearance`` of every support of
+    :func:`closure_supports`: (one row per support, the support and its :func:`closure_summary`;
+    :func:`support_label` -> (static state, underside imprint))."""
+    clearance = config["studies"]["contact_state"]["free_clearance"]
+    closures = {support_label(s): (s, free_closure(design_config(config, s), clearance))
+                for s in closure_supports(config)}
+    rows = [{**s, **closure_summary(state, sector_half_angle(config))} for s, (state, _) in closures.values()]
+    return rows, {label: c for label, (_, c) in closures.items()}
 
 
 def underside_imprint(model, u: np.ndarray, radius: float) -> xr.Dataset:

@@ -10,6 +10,10 @@ its own ω and ξ and with the stuck ω or ξ = 0 (a measure that tells a period
 near miss), and the mode content that explains a rise: the share of the fundamental's mass norm
 ``|φ_kᵀ M Q_1|²/α²`` in each mode ``φ_k`` of the structure *without* the contact springs (the
 free system) and the fraction of the period each element slips.
+
+The study's six analyses on the Jenkins chain family (:mod:`ringdamper.nonlinear.jenkins_chains`),
+one table each: :func:`rise_scan`, :func:`worst_comparisons`, :func:`spurious_returns`,
+:func:`viscous_analogue`, :func:`step_study` and :func:`issue_chain_check`.
 """
 from __future__ import annotations
 
@@ -23,11 +27,17 @@ import scipy.linalg as sla
 from ringdamper.nonlinear.epmc import Backbone, epmc, linear_limit
 from ringdamper.nonlinear.fourier import Fourier
 from ringdamper.nonlinear.friction import FrictionContacts, contact_aft
+from ringdamper.nonlinear.jenkins_chains import ISSUE_GRID, OPTIONS, SEEDS, chain_grid, issue_chain, jenkins_chain
 from ringdamper.nonlinear.shooting import hbm_state, phase_row, return_error, shoot
 from ringdamper.nonlinear.structure import Structure
 from ringdamper.status import Status
 
 LOG = logging.getLogger(__name__)
+
+SIMPLEST = 149                            # the simplest rising chain: two masses, one element
+SPURIOUS = 179                            # its H = 3 backbone holds a branch no other H finds
+STEP_POINTS = ((43, 15), (SIMPLEST, 6))   # (seed, dense-grid point): top of the grid, first strong slip
+VISCOUS_DAMPERS = np.r_[0.0, np.geomspace(0.1, 1e3, 9)]   # c of the viscous analogue
 
 
 def stuck_frequency(structure: Structure, contacts: FrictionContacts) -> float:
@@ -155,3 +165,78 @@ def return_check(structure_at, contacts: FrictionContacts, alpha: np.ndarray, H:
         rows.append(dict(H=H, alpha=alpha[i], omega=omega, zeta=bb.zeta[i],
                          return_hbm=return_error(st, contacts, x0, omega, xi, n_steps)))
     return pd.DataFrame(rows)
+
+
+def dense_grid(structure: Structure, contacts: FrictionContacts) -> np.ndarray:
+    """The family grid with 16 points: every third one is a point of the 6-point family grid."""
+    return chain_grid(structure, contacts, n=16)
+
+
+def rise_scan() -> pd.DataFrame:
+    """Every chain of the family (``SEEDS``): its masses, elements, ω_stuck and the frequency rise
+    ``max ω/ω_stuck − 1`` of its backbone at H = 1 on the family's grid and settings (``OPTIONS``)."""
+    t0 = time.process_time()
+    rises = []
+    for seed in SEEDS:
+        st, c = jenkins_chain(seed)
+        bb = epmc(st, c, chain_grid(st, c), **OPTIONS)
+        rises.append(dict(seed=seed, masses=st.harmonics[0].M.shape[0], elements=c.npairs,
+                          omega_stuck=stuck_frequency(st, c),
+                          rise=frequency_rise(bb, stuck_frequency(st, c))))
+    rise = pd.DataFrame(rises)
+    LOG.info("scan: %.1f s CPU, %d of %d chains rise", time.process_time() - t0,
+             int((rise.rise > 1e-6).sum()), len(rise))
+    return rise
+
+
+def worst_comparisons(rise: pd.DataFrame) -> dict[int, pd.DataFrame]:
+    """seed -> :func:`compare` table on the :func:`dense_grid` (H = 1, 3, 7, 15, shooting at every third
+    amplitude) of the two chains with the largest rise of the :func:`rise_scan` table ``rise`` and of
+    ``SIMPLEST``."""
+    worst = list(rise.sort_values("rise", ascending=False).seed.iloc[:2])
+    tables = {}
+    for seed in worst + [SIMPLEST]:
+        t0 = time.process_time()
+        st, c = jenkins_chain(seed)
+        tables[seed] = compare(lambda H, s=seed: jenkins_chain(s, H=H)[0], c, dense_grid(st, c))
+        LOG.info("seed %d: %.1f s CPU", seed, time.process_time() - t0)
+    return tables
+
+
+def spurious_returns() -> pd.DataFrame:
+    """The :func:`return_check` of ``SPURIOUS``'s backbones at H = 3 and H = 15 on the family grid."""
+    st, c = jenkins_chain(SPURIOUS)
+    return pd.concat([return_check(lambda H: jenkins_chain(SPURIOUS, H=H)[0], c, chain_grid(st, c), H)
+                      for H in (3, 15)])
+
+
+def viscous_analogue() -> pd.DataFrame:
+    """The :func:`damper_poles` of ``SIMPLEST`` with its element replaced by each damper of
+    ``VISCOUS_DAMPERS``."""
+    return damper_poles(jenkins_chain(SIMPLEST)[0], 0, VISCOUS_DAMPERS)
+
+
+def step_study() -> pd.DataFrame:
+    """The :func:`step_convergence` at each (seed, point) of ``STEP_POINTS`` on the seed's H = 15
+    backbone of the :func:`dense_grid`."""
+    steps = []
+    for seed, i in STEP_POINTS:
+        st, c = jenkins_chain(seed, H=15)
+        bb = epmc(st, c, dense_grid(st, c), H=15, nt=1024, tol=1e-10)
+        steps.append(step_convergence(st, c, bb, i).assign(seed=seed))
+    return pd.concat(steps)
+
+
+def issue_chain_check() -> pd.DataFrame:
+    """The folding chain (:func:`~ringdamper.nonlinear.jenkins_chains.issue_chain`, ζ up to 0.41) on
+    ``ISSUE_GRID``: :func:`compare` at H = 1 and 15 with shooting at every amplitude, and the return
+    error of its H = 1 backbone (column ``return_h1``)."""
+    st, c = issue_chain()
+    hd = st.harmonics[1]
+
+    def issue_at(H):
+        return Structure.real(hd.M, hd.K, hd.B, hd.response, hd.force, H=H)
+
+    table = compare(issue_at, c, ISSUE_GRID, harmonics=(1, 15), shoot_every=1)
+    returns = return_check(issue_at, c, ISSUE_GRID, 1).rename(columns={"return_hbm": "return_h1"})
+    return table.merge(returns[["H", "alpha", "return_h1"]], on=["H", "alpha"], how="left")

@@ -21,9 +21,12 @@ from ringdamper.studies.contact_state import (
     Variety,
     best_design,
     closure_summary,
+    closure_supports,
+    configured_design,
     contact_variety,
     design_config,
     score,
+    support_label,
     support_of,
 )
 
@@ -155,3 +158,19 @@ def test_closure_summary_separates_the_taper_from_the_sector_periodic_part():
     assert out["mean_closure"] == pytest.approx(40e-6 + 1e-6 + 0.07e-6 * np.mean(np.abs(s)), rel=1e-12)
     assert out["axial_spread"] == pytest.approx(2e-6, rel=1e-9)
     assert out["periodic_part"] == pytest.approx(0.07e-6, rel=1e-9)
+
+
+def test_closure_supports_are_the_grid_then_the_configured_one(campaign_config):
+    """The free-closure chart's supports: the grid's arm_thickness x arm_length, the configured support
+    appended once when the grid lacks it; labelled in mm; the configured design is the model's."""
+    cfg = copy.deepcopy(campaign_config)
+    cfg["studies"]["contact_state"].update(arm_thickness=[0.004, 0.009], arm_length=[0.010])
+    assert closure_supports(cfg) == [{"arm_thickness": 0.004, "arm_length": 0.010},
+                                     {"arm_thickness": 0.009, "arm_length": 0.010}, support_of(cfg)]
+    cfg["studies"]["contact_state"].update(arm_thickness=[support_of(cfg)["arm_thickness"]],
+                                           arm_length=[support_of(cfg)["arm_length"]])
+    assert closure_supports(cfg) == [support_of(cfg)]
+    assert support_label({"arm_thickness": 0.0045, "arm_length": 0.02}) == "arm 4.5 x 20 mm"
+    design = configured_design(cfg)
+    assert design_config(cfg, design) == cfg
+    assert design["radial_clearance"] == cfg["geometry"]["ring"]["radial_clearance"]

@@ -231,7 +231,7 @@ rule fidelity_summary:
         config=sections(*FIDELITY_SUMMARY),
         n_geometries=len(geometry_ids()),
         n_validation=int((SAMPLES.split == "validation").sum()),
-        n_cores=2,
+        n_cores=lambda wildcards: workflow.cores,  # the cores of this run (--cores; profiles/default: 2)
     threads: 1
     resources:
         mem_mb=scaled(400),

@@ -22,7 +22,7 @@ import xarray as xr
 import yaml
 
 from ...io import InputFileError, read_netcdf
-from ...plots.static import surface_coords
+from ...static.surface import surface_coords
 from ...status import USABLE_STATUS
 from ..kriging import OUTPUTS, KrigingSurrogate
 
@@ -78,7 +78,7 @@ def model_parameters(surrogate: KrigingSurrogate, kriging: xr.Dataset) -> dict:
 
 def contact_map(static: xr.Dataset) -> dict:
     """Per-pair arc position s and axial position z (m), N0 / area (Pa) and gap (m) of one static state."""
-    s, z = (v / 1e3 for v in surface_coords(static))  # mm -> m
+    s, z = surface_coords(static)
     return {"s": finite_list(s), "z": finite_list(z), "pressure": finite_list(static["pressure"].values),
             "gap": finite_list(static["gap"].values),
             "n_in_contact": int(static.attrs.get("n_in_contact", int(np.sum(static["pressure"].values > 0))))}

@@ -40,7 +40,7 @@ test-cluster: $(STAMP)
 # frequencies into <results>/imported/; CONFIG is a configuration with geometry.source: imported
 CONFIG ?= docs/examples/imported/config.yaml
 check-import: $(STAMP)
-	$(BIN)/snakemake --cores $(CORES) --configfile $(CONFIG) check_import
+	$(BIN)/snakemake --cores $(CORES) check_import --configfile $(CONFIG)
 
 bench: $(STAMP)
 	$(BIN)/python -m ringdamper.bench --out results/benchmarks

@@ -15,9 +15,9 @@ import numpy as np
 from .elements import ABAQUS
 from .raw import MeshFileError, RawMesh
 
-FLATTEN = ("write the deck flat: in Abaqus/CAE untick Model > Edit Attributes > 'Do not use parts and "
-           "assemblies in input files' (i.e. tick it), or export the assembly's mesh as an orphan mesh, so "
-           "that *NODE and *ELEMENT stand at the top level in global coordinates")
+FLATTEN = ("write the deck flat: in Abaqus/CAE tick Model > Edit Attributes > 'Do not use parts and "
+           "assemblies in input files' (or export the assembly's mesh as an orphan mesh), so that *NODE and "
+           "*ELEMENT stand at the top level in global coordinates")
 
 
 def _keyword(line: str) -> tuple[str, dict]:

@@ -23,13 +23,13 @@ def file_sha256(path) -> str:
     return hashlib.sha256(open(path, "rb").read()).hexdigest()
 
 
-def nd_frequencies(sector: ImportedSector, speeds_rpm, n_modes: int) -> list[dict]:
-    """Rows (nd, mode, speed_rpm, frequency_hz) for ND 0..N/2 at each speed."""
+def nd_frequencies(sector: ImportedSector, speeds_rpm, n_modes: int, nds=None) -> list[dict]:
+    """Rows (nd, mode, speed_rpm, frequency_hz) for ND 0..N/2 (or ``nds``) at each speed."""
     rows = []
     no_contact = sp.csr_matrix((sector.n_dofs, sector.n_dofs))
     for rpm in speeds_rpm:
         K = prestressed_stiffness(sector, rpm_to_rad_s(rpm), no_contact)
-        for nd in range(sector.n_sectors // 2 + 1):
+        for nd in range(sector.n_sectors // 2 + 1) if nds is None else nds:
             freq = cyclic_modes(sector, K, sector.M, nd, n_modes).frequency
             rows += [{"nd": nd, "mode": j, "speed_rpm": float(rpm), "frequency_hz": float(f)}
                      for j, f in enumerate(freq)]

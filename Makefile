@@ -7,7 +7,7 @@ CORES  ?= 2
 # one BLAS/OpenMP thread per process: jobs run side by side on a 2-core machine
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 
-.PHONY: campaign test test-explorer test-cluster bench performance studies fidelity explorer paper-design report lint clean
+.PHONY: check-import campaign test test-explorer test-cluster bench performance studies fidelity explorer paper-design report lint clean
 
 $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV) || python3 -m venv $(VENV)
@@ -35,6 +35,12 @@ test-explorer: $(STAMP)
 test-cluster: $(STAMP)
 	$(BIN)/python -m pip install --quiet -e ".[test,cluster]"
 	.ci/slurm/test_cluster.sh $(BIN) $(or $(WORKDIR),$(CURDIR)/results/test-cluster)
+
+# the import report of a user's own blisk sector (docs/imported.md): checks, counts, mass and the blisk's ND
+# frequencies into <results>/imported/; CONFIG is a configuration with geometry.source: imported
+CONFIG ?= docs/examples/imported/config.yaml
+check-import: $(STAMP)
+	$(BIN)/snakemake --cores $(CORES) check_import --configfile $(CONFIG)
 
 bench: $(STAMP)
 	$(BIN)/python -m ringdamper.bench --out results/benchmarks

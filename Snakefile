@@ -2,14 +2,16 @@
 import sys
 from pathlib import Path
 
-from ringdamper.config import ConfigError, validate_config
+from ringdamper.config import ConfigError, resolve_imported_mesh, validate_config
 
 configfile: "config.yaml"
 
 report: "workflow/report/workflow.rst"
 
+# a relative imported.mesh is read from the folder of the configuration file that gives it
+CONFIG_DIR = Path((list(workflow.overwrite_configfiles) or ["config.yaml"])[-1]).resolve().parent
 try:
-    validate_config(config)
+    resolve_imported_mesh(validate_config(config), CONFIG_DIR)
 except ConfigError as err:
     sys.exit(str(err))
 
@@ -29,6 +31,9 @@ include: "workflow/rules/frf.smk"
 include: "workflow/rules/limits.smk"
 include: "workflow/rules/fidelity.smk"
 include: "workflow/rules/report.smk"
+if config["geometry"].get("source", "builtin") == "imported":
+
+    include: "workflow/rules/imported.smk"
 
 
 rule all:

@@ -206,12 +206,38 @@ def _analytics_errors(config: dict) -> list[str]:
     return errors
 
 
+def _imported_errors(config: dict) -> list[str]:
+    """``geometry.source = imported`` needs the ``imported`` section; its directions must not vanish."""
+    if config["geometry"].get("source", "builtin") != "imported":
+        return []
+    imported = config.get("imported")
+    if imported is None:
+        return ["imported: required when geometry.source = 'imported' (docs/imported.md)"]
+    return [f"imported.{key} = {imported[key]} must not be the zero vector"
+            for key in ("axis", "forcing_direction") if key in imported and not any(imported[key])]
+
+
+def resolve_imported_mesh(config: dict, config_dir) -> dict:
+    """``imported.mesh`` made absolute against the configuration file's folder (in place); a file that
+    does not exist is a :class:`ConfigError` naming both paths."""
+    imported = config.get("imported")
+    if imported is None or config["geometry"].get("source", "builtin") != "imported":
+        return config
+    path = Path(imported["mesh"])
+    resolved = path if path.is_absolute() else (Path(config_dir) / path).resolve()
+    if not resolved.is_file():
+        raise ConfigError(f"invalid configuration:\n  - imported.mesh = '{imported['mesh']}': no such file "
+                          f"({resolved}; a relative path is read from the configuration file's folder {config_dir})")
+    imported["mesh"] = str(resolved)
+    return config
+
+
 def validate_config(config: dict[str, Any]) -> dict[str, Any]:
     """Validate ``config`` in place semantics; raise one :class:`ConfigError` listing every problem."""
     errors = _schema_errors(config)
     if not errors:
         errors = (_geometry_errors(config) + _solver_errors(config) + _analytics_errors(config)
-                  + _contact_state_errors(config))
+                  + _contact_state_errors(config) + _imported_errors(config))
     if errors:
         raise ConfigError("invalid configuration:\n  - " + "\n  - ".join(errors))
     return config
@@ -223,4 +249,4 @@ def load_config(path: str | Path = DEFAULT_CONFIG) -> dict[str, Any]:
         config = yaml.safe_load(fh)
     if not isinstance(config, dict):
         raise ConfigError(f"{path}: the configuration must be a YAML mapping")
-    return validate_config(config)
+    return resolve_imported_mesh(validate_config(config), Path(path).resolve().parent)

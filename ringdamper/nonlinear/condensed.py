@@ -45,9 +45,9 @@ some contact holds it (stuck memory or a normal spring along the rigid motion). 
 contact stiffness along a rigid motion vanishes (all pairs it moves have lost their memory), the
 system is singular: the equilibrium along that direction no longer involves ``η_Z`` and the
 position is arbitrary. Those directions (null space of ``K_c Ψ_Z`` on the DC slots, by SVD) get
-the explicit gauge ``η_Z = η_ref`` instead (``η_ref``: the last determined position, set by the
-caller), and the dropped equilibrium is returned as ``drift``: if non-zero at a solution, no
-periodic solution exists (the free body ratchets).
+the explicit gauge ``η_Z = η_ref`` instead (``η_ref``: the last determined position, held by the
+solve's :class:`GaugeState`), and the dropped equilibrium is returned as ``drift``: if non-zero at a
+solution, no periodic solution exists (the free body ratchets).
 
 Soft hold: "vanishes" means below ``gauge_tol`` (default 1 %) of one pair's stiffness times
 ``‖Ψ_Z‖₂``. Once the whole interface slips, a ring whose contact normals are tilted (κ1) is still
@@ -59,15 +59,26 @@ that no continuation passed on 6 of the first 40 campaign rings. Treating such a
 free (gauged, then pinned) removes it.
 
 Pinning: a direction that lost its hold at an accepted point, or whose hold Newton found and
-lost again within a failed step (:meth:`CondensedHBM.pin_seen`), stays gauged for the rest of
-the branch (:meth:`CondensedHBM.pin`). Near the loss of hold the last holding pair cannot carry
+lost again within a failed step (:meth:`GaugeState.pin_seen`), stays gauged for the rest of
+the branch (:meth:`GaugeState.pin`). Near the loss of hold the last holding pair cannot carry
 the imbalance and the gauge position keeps it stuck, so neither equation set alone has a
 solution and Newton cycles between them; the pinned direction behaves as a stop holding the
 body at its last equilibrium position, and the force the stop takes is the reported ``drift``.
+
+State. A :class:`CondensedHBM` is the fixed problem (structure, contacts, truncation, the receptance
+series formed about one expansion point): nothing in it changes once it is built, so one model
+serves any number of solves, in any order (the adaptive truncation shares one per H between the
+points of a ring). What a solve carries from one evaluation to the next is its :class:`GaugeState`
+(gauge reference, pinned directions, lost holds seen since the last accepted point), an immutable
+value: :meth:`CondensedHBM.evaluate` takes one and returns, in :attr:`CoreEval.state`, the state
+after that evaluation; :meth:`CondensedHBM.accepted`, :meth:`GaugeState.pin` and
+:meth:`GaugeState.pin_seen` return new states. A problem built on the model
+(:class:`ringdamper.nonlinear.epmc.EPMCProblem`, :class:`ringdamper.nonlinear.forced.ForcedProblem`)
+is one solve: it holds the state and replaces it by each evaluation's.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -78,14 +89,50 @@ from ringdamper.nonlinear.receptance import DampedReceptance, Receptance
 from ringdamper.nonlinear.structure import Structure
 
 
-@dataclass
+@dataclass(frozen=True)
+class GaugeState:
+    """The gauge state of one solve (module docstring, *Gauge*, *Pinning*, *State*): ``reference``, the
+    gauge position ``η_ref`` of the zero modes (nz,); ``pinned``, the directions gauged for good and
+    ``seen``, those whose hold some evaluation since the last accepted point found lost (orthonormal
+    columns in the zero-mode space, (nz, k)). Immutable (its arrays read-only): every change returns a
+    new state. Built by :meth:`CondensedHBM.initial_gauge` or :meth:`CondensedHBM.gauge_at`."""
+
+    reference: np.ndarray
+    pinned: np.ndarray
+    seen: np.ndarray
+
+    def __post_init__(self):
+        for name in ("reference", "pinned", "seen"):
+            value = np.array(getattr(self, name), float)
+            value.flags.writeable = False
+            object.__setattr__(self, name, value)
+
+    def pin(self, basis: np.ndarray) -> tuple["GaugeState", bool]:
+        """The state with the directions ``basis`` (columns in the zero-mode space) gauged for good,
+        and whether that added a direction."""
+        merged = _span(self.pinned, basis)
+        if merged.shape[1] == self.pinned.shape[1]:
+            return self, False
+        return replace(self, pinned=merged), True
+
+    def pin_seen(self) -> tuple["GaugeState", bool]:
+        """The state with the directions whose hold was lost in some evaluation since the last accepted
+        point pinned (after a failed step: Newton cycled between holding and not holding) and none seen,
+        and whether that added a direction."""
+        state, added = self.pin(self.seen)
+        return replace(state, seen=np.zeros_like(state.pinned[:, :0])), added
+
+
+@dataclass(frozen=True)
 class CoreEval:
     """One evaluation: residual ``r``, Jacobian ``J`` (core × core, a :class:`CoreJacobian`
     operator) and its columns for ω and ξ,
     the trivial unknowns (d slots of pairs with zero contact Jacobian: their columns are unit
     vectors), contact displacement/force slots ``d``, ``lam`` (C × p), modal coordinates ``eta[h]``
-    of every mode, the AFT result, the gauge drift (equilibria dropped for the gauge) and the
-    gauged directions ``gauge`` (orthonormal columns in the zero-mode space, one per drift)."""
+    of every mode, the AFT result, the gauge drift (equilibria dropped for the gauge), the
+    gauged directions ``gauge`` (orthonormal columns in the zero-mode space, one per drift) and
+    ``state``, the solve's :class:`GaugeState` after this evaluation (the lost holds it found added to
+    those seen)."""
 
     r: np.ndarray
     J: "CoreJacobian | None"
@@ -98,6 +145,7 @@ class CoreEval:
     aft: ContactAFT
     drift: np.ndarray
     gauge: np.ndarray
+    state: GaugeState
 
 
 def structural_damping(structure: Structure, H: int, zeta_s: float | np.ndarray = 0.0) -> list | None:
@@ -124,12 +172,16 @@ class CondensedHBM:
     :func:`structural_damping` gives the structure's). ``forced``: include the forcing vectors scaled by
     ``gamma``. ``gauge_tol``: a rigid-body direction whose DC contact stiffness (singular value
     of ``K_c Ψ_Z``) is below ``gauge_tol × max(kn, kt) × ‖Ψ_Z‖₂`` counts as not held (module
-    docstring, *soft hold*).
+    docstring, *soft hold*). ``expansion``: the ``(ω, ξ)`` about which the receptance series of the
+    condensed modes are formed (:meth:`receptance`; a solve's start point: the series then serves it
+    and every point within its reach, to rounding); None: direct sums.
+
+    Fixed once built (module docstring, *State*): setting an attribute raises.
     """
 
     def __init__(self, structure: Structure, contacts: FrictionContacts | Elements, H: int, nt: int,
                  explicit=None, damping=None, forced: bool = False, gamma: float = 0.0,
-                 gauge_tol: float = 1e-2):
+                 gauge_tol: float = 1e-2, expansion: tuple[float, float] | None = None):
         if H > structure.H_max:
             raise ValueError(f"structure has harmonics up to {structure.H_max}, H={H} requested")
         contacts = contacts.for_pairs(structure.npairs)
@@ -163,7 +215,7 @@ class CondensedHBM:
         self.PsiS = [m.Psi[:, S] for m, S in zip(self.modal, self.S)]          # explicit
         self.PsiCH = [P.conj().T.copy() for P in self.PsiC]                    # Ψ_Cᴴ
         self.PsiSH = [P.conj().T.copy() for P in self.PsiS]                    # Ψ_Sᴴ
-        self.receptances = [_receptance(h, m.w2[Cs], c[Cs], P, PH, coupled is not None)
+        self.receptances = [_receptance(h, m.w2[Cs], c[Cs], P, PH, coupled is not None, expansion)
                             for h, (m, Cs, P, PH, c, coupled)
                             in enumerate(zip(self.modal, self.Cset, self.PsiC, self.PsiCH, self.damping,
                                              self.coupling))]
@@ -172,12 +224,16 @@ class CondensedHBM:
             PsiZ = self.modal[0].Psi[:, self.S[0][self.zero_modes]]
             if np.any(np.linalg.norm(PsiZ, axis=0) == 0):
                 raise ValueError("a zero-frequency mode of harmonic 0 moves no contact: mechanism")
-        self.eta_ref = np.zeros(self.zero_modes.size)
-        self.pinned = np.zeros((self.zero_modes.size, 0))   # directions gauged for good
-        self.seen = np.zeros((self.zero_modes.size, 0))     # lost holds seen since the last accept
         kscale = contacts.stiffness_scale()
         self._null_tol = gauge_tol * kscale * (np.linalg.norm(PsiZ, 2) if self.zero_modes.size
                                                else 0.0)
+        self._fixed = True
+
+    def __setattr__(self, name, value):
+        if "_fixed" in self.__dict__:
+            raise AttributeError(f"CondensedHBM is fixed once built: cannot set {name!r} (a solve's "
+                                 "gauge state is a GaugeState, passed to evaluate)")
+        super().__setattr__(name, value)
 
     # ---- layout helpers -------------------------------------------------------------------
     def eta_explicit(self, y: np.ndarray, h: int) -> np.ndarray:
@@ -207,39 +263,31 @@ class CondensedHBM:
         s = self.S[h].size
         return self.eta_slices[h].start + k + (s if imag else 0)
 
-    def start_at(self, y: np.ndarray, pinned: np.ndarray) -> None:
-        """Gauge state of a solve from a point ``y`` (its unknowns; ω and ξ may follow) that was solved
-        with the rigid-body directions ``pinned``: those pinned, no lost hold seen, and the gauge
-        reference the zero-mode positions of ``y``, whatever solve used the model before."""
-        self.pinned = pinned.copy()
-        self.seen = np.zeros_like(self.pinned[:, :0])
-        if self.zero_modes.size:
-            self.eta_ref = y[self.eta_slices[0].start + self.zero_modes].copy()
+    # ---- gauge states (module docstring, *State*) -------------------------------------------
+    def initial_gauge(self, reference: np.ndarray | None = None) -> GaugeState:
+        """The gauge state a solve starts from: reference ``reference`` (the zero-mode positions while
+        they are undetermined; default 0), nothing pinned or seen."""
+        nz = self.zero_modes.size
+        ref = np.zeros(nz) if reference is None else reference
+        return GaugeState(reference=ref, pinned=np.zeros((nz, 0)), seen=np.zeros((nz, 0)))
 
-    def accept(self, y: np.ndarray, ev: "CoreEval") -> None:
-        """History update on every accepted continuation point: the gauge reference takes the
-        zero-mode positions of ``y`` (an undetermined rigid-body position keeps its last value)
-        and the directions gauged at ``ev`` are pinned (module docstring)."""
-        if self.zero_modes.size:
-            self.eta_ref = y[self.eta_slices[0].start + self.zero_modes].copy()
-            self.pin(ev.gauge)
-            self.seen = np.zeros_like(self.pinned[:, :0])
+    def gauge_at(self, y: np.ndarray, pinned: np.ndarray) -> GaugeState:
+        """The gauge state of a solve from a point ``y`` (its unknowns; ω and ξ may follow) that was
+        solved with the rigid-body directions ``pinned``: those pinned, no lost hold seen, and the gauge
+        reference the zero-mode positions of ``y``."""
+        reference = y[self.eta_slices[0].start + self.zero_modes] if self.zero_modes.size \
+            else np.zeros(0)
+        return GaugeState(reference=reference, pinned=pinned, seen=np.zeros_like(pinned[:, :0]))
 
-    def pin(self, basis: np.ndarray) -> bool:
-        """Gauge the directions ``basis`` (columns in the zero-mode space) for good; True if that
-        added a direction."""
-        merged = _span(self.pinned, basis)
-        if merged.shape[1] == self.pinned.shape[1]:
-            return False
-        self.pinned = merged
-        return True
-
-    def pin_seen(self) -> bool:
-        """Pin the directions whose hold was lost in some evaluation since the last accepted
-        point (after a failed step: Newton cycled between holding and not holding)."""
-        added = self.pin(self.seen)
-        self.seen = np.zeros_like(self.pinned[:, :0])
-        return added
+    def accepted(self, gauge: GaugeState, y: np.ndarray, ev: "CoreEval") -> GaugeState:
+        """The gauge state after the accepted continuation point ``y`` (evaluated as ``ev``): the
+        reference takes the zero-mode positions of ``y`` (an undetermined rigid-body position keeps its
+        last value), the directions gauged at ``ev`` are pinned and none is seen (module docstring)."""
+        if not self.zero_modes.size:
+            return gauge
+        moved = replace(gauge, reference=y[self.eta_slices[0].start + self.zero_modes])
+        pinned, _ = moved.pin(ev.gauge)
+        return replace(pinned, seen=np.zeros_like(pinned.pinned[:, :0]))
 
     def relative_drift(self, ev: "CoreEval") -> float:
         """Largest dropped rigid-body equilibrium of ``ev`` relative to ``max|Ψ_0|·max|λ|``
@@ -263,9 +311,11 @@ class CondensedHBM:
         return sc
 
     # ---- evaluation -----------------------------------------------------------------------
-    def evaluate(self, y: np.ndarray, omega: float, xi: float, jacobian: bool = True) -> CoreEval:
-        """Residual at ``(y, ω, ξ)`` and, if ``jacobian``, its linearisation: ``J`` as an operator
-        (:class:`CoreJacobian`) and the ω and ξ columns."""
+    def evaluate(self, y: np.ndarray, omega: float, xi: float, gauge: GaugeState,
+                 jacobian: bool = True) -> CoreEval:
+        """Residual at ``(y, ω, ξ)`` in the gauge state ``gauge`` and, if ``jacobian``, its
+        linearisation: ``J`` as an operator (:class:`CoreJacobian`) and the ω and ξ columns. The state
+        after the evaluation is :attr:`CoreEval.state` (``gauge`` itself is a value: unchanged)."""
         H, C, p, npairs = self.H, self.C, self.p, self.npairs
         d = y[:self.n_d].reshape(C, p)
         aft = self.contacts.aft(self.fourier, d.reshape(C, npairs, 3).transpose(1, 2, 0),
@@ -307,11 +357,12 @@ class CondensedHBM:
             active = np.any(aft.jac.reshape(npairs, -1) != 0, axis=1)
             trivial = np.zeros(self.n_core, bool)
             trivial[:self.n_d] = np.tile(np.repeat(~active, 3), C)
-        drift, gauge, rotation = self._gauge(r, (dr_dw, dr_dx) if jacobian else (), y, aft.jac)
+        drift, gauged, rotation, state = self._gauge(r, (dr_dw, dr_dx) if jacobian else (), y, aft.jac,
+                                                     gauge)
         if jacobian:
             J = CoreJacobian(self, aft.jac, omega, xi, rotation, impedances)
         return CoreEval(r=r, J=J, dr_domega=dr_dw, dr_dxi=dr_dx, trivial=trivial, d=d, lam=lam,
-                        eta=etas, aft=aft, drift=drift, gauge=gauge)
+                        eta=etas, aft=aft, drift=drift, gauge=gauged, state=state)
 
     def _put(self, out: np.ndarray, h: int, rd: np.ndarray, re: np.ndarray) -> None:
         """Write harmonic ``h``'s complex contact rows ``rd`` and explicit-mode rows ``re`` into the
@@ -375,11 +426,10 @@ class CondensedHBM:
         has modal damping and ``ξ = 0`` (a forced response), ``z_r = ω_r² − u² + i u c_r`` with ``u = hω``,
         and :class:`ringdamper.nonlinear.receptance.DampedReceptance` sums it."""
         receptance = self.receptances[h]
-        if isinstance(receptance, DampedReceptance):
-            if xi == 0.0:
-                return receptance(h * omega)
-        elif receptance is not None:
-            return receptance(h * h * omega * omega + 1j * h * omega * xi if h else 0.0)
+        if receptance is not None:
+            s = _series_variable(h, omega, xi, isinstance(receptance, DampedReceptance))
+            if s is not None:
+                return receptance(s)
         Cs = self.Cset[h]
         return (self.PsiC[h] * (1.0 / z[Cs])) @ self.PsiCH[h]
 
@@ -393,15 +443,16 @@ class CondensedHBM:
         sl = self.fourier.slots(h)
         return slice(sl.start * self.p, sl.stop * self.p)
 
-    def _gauge(self, r, columns, y, kc):
-        """Replace the rigid-body equilibria along the pinned directions and along directions not
-        held by any contact by the gauge ``η_Z = η_ref`` (module docstring), in ``r`` and in the
-        Jacobian ``columns`` (ω, ξ); return the dropped equilibria (drift), the gauged directions
-        and the :class:`GaugeRotation` the Jacobian's rows take (None if nothing is gauged)."""
+    def _gauge(self, r, columns, y, kc, state: GaugeState):
+        """Replace the rigid-body equilibria along the pinned directions of ``state`` and along
+        directions not held by any contact by the gauge ``η_Z = η_ref`` (module docstring), in ``r`` and
+        in the Jacobian ``columns`` (ω, ξ); return the dropped equilibria (drift), the gauged
+        directions, the :class:`GaugeRotation` the Jacobian's rows take (None if nothing is gauged) and
+        the state with the directions found not held added to those seen."""
         nz = self.zero_modes.size
-        pinned = self.pinned
+        pinned = state.pinned
         if nz == 0:
-            return np.zeros(0), pinned, None
+            return np.zeros(0), pinned, None, state
         rows = self.eta_slices[0].start + self.zero_modes     # η_Z unknowns and their equilibria
         free = _complement(pinned)
         new = np.zeros((nz, 0))
@@ -415,20 +466,20 @@ class CondensedHBM:
                 sign = np.sign(Vt[np.arange(Vt.shape[0]), np.argmax(np.abs(Vt), 1)])
                 free = free @ (Vt.T * sign)                            # deterministic basis
             new, free = free[:, null], free[:, ~null]
-            self.seen = _span(self.seen, new)
+            state = replace(state, seen=_span(state.seen, new))
         gauge = np.hstack([pinned, new])
         if not gauge.shape[1]:
-            return np.zeros(0), gauge, None
+            return np.zeros(0), gauge, None, state
         rotation = GaugeRotation(rows, np.hstack([free, gauge]), slice(free.shape[1], nz), gauge)
         rot = rotation.V.T @ r[rows]
         drift = rot[rotation.g].copy()
-        rot[rotation.g] = gauge.T @ (y[rows] - self.eta_ref)
+        rot[rotation.g] = gauge.T @ (y[rows] - state.reference)
         r[rows] = rot
         for vec in columns:
             v = rotation.V.T @ vec[rows]
             v[rotation.g] = 0.0
             vec[rows] = v
-        return drift, gauge, rotation
+        return drift, gauge, rotation, state
 
 
 @dataclass
@@ -558,13 +609,27 @@ def _complement(basis: np.ndarray) -> np.ndarray:
     return u[:, k:]
 
 
-def _receptance(h: int, w2: np.ndarray, c: np.ndarray, Psi: np.ndarray, PsiH: np.ndarray, coupled: bool):
-    """The summation of harmonic ``h``'s condensed receptance (:meth:`CondensedHBM.receptance`): the
-    undamped series at h = 0 and on undamped harmonics, the damped one on modally damped harmonics, none
-    (the direct sum) where the damping couples the modes."""
+def _series_variable(h: int, omega: float, xi: float, damped: bool):
+    """The variable of harmonic ``h``'s receptance series at ``(ω, ξ)`` (:meth:`CondensedHBM.receptance`):
+    ``s = (hω)² + i hωξ`` (0 at h = 0) for the undamped series, ``u = hω`` for the damped one (``damped``),
+    which serves ``ξ = 0`` only (None otherwise)."""
+    if damped:
+        return h * omega if xi == 0.0 else None
+    return h * h * omega * omega + 1j * h * omega * xi if h else 0.0
+
+
+def _receptance(h: int, w2: np.ndarray, c: np.ndarray, Psi: np.ndarray, PsiH: np.ndarray, coupled: bool,
+                expansion: tuple[float, float] | None):
+    """The summation of harmonic ``h``'s condensed receptance (:meth:`CondensedHBM.receptance`), its series
+    formed about ``expansion = (ω, ξ)`` (:func:`_series_variable`): the undamped series at h = 0 and on
+    undamped harmonics, the damped one on modally damped harmonics (where ``ξ = 0`` there: the series serves
+    ξ = 0 only); none (the direct sum) where the damping couples the modes, or without ``expansion``."""
+    if expansion is None:
+        return None
     if h == 0 or not np.any(c):
-        return Receptance(w2, Psi, PsiH)
-    return None if coupled else DampedReceptance(w2, c, Psi, PsiH)
+        return Receptance(w2, Psi, PsiH, _series_variable(h, *expansion, damped=False))
+    u0 = None if coupled else _series_variable(h, *expansion, damped=True)
+    return None if u0 is None else DampedReceptance(w2, c, Psi, PsiH, u0)
 
 
 def pole_modes(structure: Structure, H: int, lo: float, hi: float) -> list:

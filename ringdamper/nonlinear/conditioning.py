@@ -2,8 +2,8 @@
 
 The EPMC point ``z = [y, ω, ξ]`` solves ``r(z) = 0`` (:class:`ringdamper.nonlinear.epmc.EPMCProblem`).
 Newton stops when its correction ``δz = −J⁻¹ r`` is below ``tol`` in the scaled unknowns
-``z_i / scale_i`` (:meth:`EPMCProblem.scale`), so the returned point is within about ``tol`` of the
-exact root, in that measure, whatever the Jacobian. What rounding adds is ``J⁻¹ δr`` with ``δr``
+``z_i / scale_i`` (:meth:`ringdamper.nonlinear.epmc.EPMCProblem.scale`), so the returned point is within
+about ``tol`` of the exact root, in that measure, whatever the Jacobian. What rounding adds is ``J⁻¹ δr`` with ``δr``
 the rounding of the residual, ``|δr_i| ≈ ε · (size of the terms of row i)``. In the scaled unknowns
 and with every row divided by its largest Jacobian entry (the size of its terms at the scaled unit
 step), that is at most about ``κ ε`` with
@@ -15,9 +15,9 @@ FMA or not) give two such roundings, so the two converged points differ by up to
 scaled: with ``tol = 1e-8`` the first term is 2e-8, and the second exceeds 1e-6 when
 ``κ > 1e-6 / (2 ε) ≈ 2.25e9`` (:data:`ILL_CONDITIONED`).
 
-``J`` is that of :meth:`EPMCProblem.fun` at the point (its pinned rigid-body directions set by
-:meth:`Backbone.state`), with the trivial unknowns (unit columns in the core rows: contact slots of
-pairs open over the whole period) eliminated as the Newton does: ``A = J_NN − J_NT J_TN``. κ is
+``J`` is that of :meth:`ringdamper.nonlinear.epmc.EPMCProblem.fun` at the point, in its gauge state (its
+pinned rigid-body directions: :meth:`Backbone.problem`), with the trivial unknowns (unit columns in the core
+rows: contact slots of pairs open over the whole period) eliminated as the Newton does: ``A = J_NN − J_NT J_TN``. κ is
 LAPACK's estimate ``1 / dgecon`` from the LU of ``D_r A D_c`` (Higham's 1-norm estimator, within a
 factor of a few of the exact value; :meth:`ringdamper.nonlinear.newton.Factorization.condition`). The
 natural continuation forms that LU at every grid value it lands on, for the point's tangent, and keeps
@@ -36,12 +36,9 @@ so a rerun reproduces the file bit for bit.
 """
 from __future__ import annotations
 
-import copy
-import dataclasses
-
 import numpy as np
 
-from ringdamper.nonlinear.epmc import Backbone, EPMCProblem
+from ringdamper.nonlinear.epmc import Backbone
 from ringdamper.nonlinear.jacobian import dense
 from ringdamper.nonlinear.newton import Factorization
 from ringdamper.status import usable_status
@@ -68,20 +65,16 @@ def equilibrated_condition(J: np.ndarray, trivial: np.ndarray | None, scale: np.
 
 def point_condition(backbone: Backbone, i: int) -> float:
     """κ (module docstring) of grid point ``i`` of ``backbone``, from its Jacobian at the solution."""
-    model = backbone.model
-    problem = EPMCProblem(model, backbone.phase_index, backbone.drift_tol, backbone.amplitude)
-    z = backbone.state(i)
-    _, J, trivial, _, _ = problem.fun(z, np.log(backbone.alpha[i]), True)
-    return equilibrated_condition(dense(J), trivial, problem.scale(z))
+    problem = backbone.problem(i)
+    z = backbone.unknowns(i)
+    ev = problem.fun(z, np.log(backbone.alpha[i]), True)
+    return equilibrated_condition(dense(ev.J), ev.trivial, problem.scale(z))
 
 
 def backbone_conditions(backbone: Backbone) -> np.ndarray:
     """κ of every usable point (status 0 or 3) of ``backbone``, NaN elsewhere: the estimate the
     continuation made where it factorised the point's Jacobian (``backbone.condition``), else computed
-    here. The points that are scaled copies of the first (the stuck shortcut's) take its κ. The
-    evaluations run on a shallow copy of the model, so the gauge state they set (pinned and seen
-    rigid-body directions) stays out of ``backbone``, whose model later restarts may use."""
-    own = dataclasses.replace(backbone, model=copy.copy(backbone.model))
+    here. The points that are scaled copies of the first (the stuck shortcut's) take its κ."""
     known = np.full(backbone.alpha.size, np.nan) if backbone.condition is None else backbone.condition
     kappa = np.full(backbone.alpha.size, np.nan)
     for i in np.flatnonzero(usable_status(np.asarray(backbone.status))):
@@ -91,7 +84,7 @@ def backbone_conditions(backbone: Backbone) -> np.ndarray:
         elif np.isfinite(known[i]):
             kappa[i] = known[i]
         else:
-            kappa[i] = point_condition(own, i)
+            kappa[i] = point_condition(backbone, i)
     return reported(kappa)
 
 

@@ -39,16 +39,25 @@ they end the run with a status (:class:`ringdamper.status.Status`). A natural st
 between two grid values may stop its corrector earlier (:attr:`StepControl.between`): such a point
 carries only the predictor and the next step's geometry; every grid value is solved to the run's
 tolerance.
+
+Interface. A driver takes a *problem* and a :class:`StepControl` (every step setting, the corrector's
+tolerance and Jacobian budget included). :func:`natural` and :func:`natural_then_arclength` take a
+:class:`ParameterProblem` (``r(z, s) = 0``), :func:`arclength` a :class:`CurveProblem` (``r(x) = 0``,
+one equation fewer than unknowns); both return an :class:`ringdamper.nonlinear.jacobian.Evaluation`
+from ``fun`` and take the history hooks ``accept`` (every accepted point) and ``on_failure`` (after a
+failed corrector). :class:`ParameterFunctions` and :class:`CurveFunctions` make one of plain functions.
+A problem that carries state between evaluations (the gauge of the condensed HBM) holds it itself
+(:class:`ringdamper.nonlinear.epmc.EPMCProblem`): the drivers keep none.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any, Callable, Protocol
 
 import numpy as np
 
 from ringdamper.nonlinear import krylov
-from ringdamper.nonlinear.jacobian import bordered, dense, is_operator
+from ringdamper.nonlinear.jacobian import Evaluation, dense, is_operator
 from ringdamper.nonlinear.newton import Factorization, NewtonResult, linear_solver, newton
 from ringdamper.status import Status
 
@@ -69,7 +78,7 @@ GIVE_UP_DAMPING = 1.0 / 16
 BETWEEN_PER_STEP = 1e-3
 
 
-@dataclass
+@dataclass(frozen=True)
 class StepControl:
     """Step-size rules (in the continuation parameter or arc length). ``turn`` [rad]: nominal
     angle between the tangents of successive points (the step follows the curvature); a step
@@ -81,7 +90,11 @@ class StepControl:
     Broyden steps on their factorisation instead of chord steps
     (:func:`ringdamper.nonlinear.newton.newton`).
     ``tangent_rtol``: accuracy (scaled 2-norm) of the arc-length tangents that GMRES solves on a
-    lagged LU (:mod:`ringdamper.nonlinear.krylov`)."""
+    lagged LU (:mod:`ringdamper.nonlinear.krylov`). ``tol``, ``max_iter``: Newton tolerance of a
+    converged point (scaled step, :func:`ringdamper.nonlinear.newton.newton`) and its fresh Jacobians.
+    ``max_angle``: the geometry tests' angle (None: ``2·turn``, :meth:`angle_limit`); ``corner``: the
+    turn test is waived below ``corner × minimum``. ``max_points``: arc-length points of a run (None:
+    :meth:`arc_points`)."""
 
     initial: float
     minimum: float
@@ -95,6 +108,11 @@ class StepControl:
     give_up_damping: float | None = GIVE_UP_DAMPING  # a corrector that needs damping this deep fails its step
     tangent_rtol: float = krylov.RTOL  # accuracy of arc-length tangents by GMRES on a lagged LU
     quasi_newton: bool = False  # correctors take quasi-Newton steps on their factorisation
+    tol: float = 1e-8           # Newton tolerance of a converged point
+    max_iter: int = 20          # fresh Jacobians of a Newton solve
+    max_angle: float | None = None  # angle of the geometry tests (None: 2 turn)
+    corner: float = 100.0       # the turn test is waived below corner × minimum
+    max_points: int | None = None   # arc-length points of a run (None: arc_points' default)
 
     def __post_init__(self):
         if not 0 < self.minimum <= self.initial:
@@ -111,19 +129,28 @@ class StepControl:
         if self.corrector is not None and self.corrector < 1:
             raise ValueError(f"StepControl: corrector must be >= 1 fresh Jacobians, got {self.corrector}")
 
-    def corrector_tolerance(self, tol: float, ds: float, on_grid: bool) -> float:
-        """Newton tolerance of a natural step of size ``ds``: ``tol`` on a grid value; between grid
+    def angle_limit(self) -> float:
+        """The geometry tests' angle [rad]: :attr:`max_angle`, default ``2·turn``."""
+        return 2 * self.turn if self.max_angle is None else self.max_angle
+
+    def arc_points(self) -> int:
+        """Arc-length points of a run: :attr:`max_points`, default ``400·max(1, 0.5 / maximum)`` (so that
+        a smaller maximum step does not run out of points)."""
+        return int(400 * max(1.0, 0.5 / self.maximum)) if self.max_points is None else self.max_points
+
+    def corrector_tolerance(self, ds: float, on_grid: bool) -> float:
+        """Newton tolerance of a natural step of size ``ds``: :attr:`tol` on a grid value; between grid
         values, where a point only carries the predictor and the step's geometry, up to
         :attr:`between`, and at most ``BETWEEN_PER_STEP·ds`` so that the corrector's error tilts
         the chord by no more than that angle [rad] (``|δu| ≤ tol``, chord ``≥ ds``; the geometry
         tests work at 0.1–0.2 rad)."""
         if on_grid or self.between is None:
-            return tol
-        return max(tol, min(self.between, BETWEEN_PER_STEP * ds))
+            return self.tol
+        return max(self.tol, min(self.between, BETWEEN_PER_STEP * ds))
 
-    def corrector_iterations(self, max_iter: int) -> int:
-        """Fresh Jacobians a predictor–corrector step may use: :attr:`corrector`, at most ``max_iter``."""
-        return max_iter if self.corrector is None else min(self.corrector, max_iter)
+    def corrector_iterations(self) -> int:
+        """Fresh Jacobians a predictor–corrector step may use: :attr:`corrector`, at most :attr:`max_iter`."""
+        return self.max_iter if self.corrector is None else min(self.corrector, self.max_iter)
 
     def adapt(self, ds: float, res, turn: float = 0.0) -> float:
         """New step from the corrector's effort (Jacobians + iterations / chord budget, see
@@ -162,6 +189,84 @@ class NaturalResult:
     branch: list = field(default_factory=list)
 
 
+class ParameterProblem(Protocol):
+    """``r(z, s) = 0`` in the unknowns ``z`` and the scalar parameter ``s`` (:func:`natural`):
+    ``fun(z, s, jacobian)`` its :class:`ringdamper.nonlinear.jacobian.Evaluation`, ``dfun_ds(z, s)``
+    ``∂r/∂s``, ``scale(z)`` the unknowns' convergence scales; ``accept(z, payload)`` is called on every
+    accepted point (history updates, e.g. a gauge), ``on_failure()`` after a failed corrector (True:
+    the problem changed, e.g. a rigid-body direction was pinned, and the same step is tried again);
+    ``jump_mask``: the unknowns the step geometry looks at (None: all)."""
+
+    jump_mask: np.ndarray | None
+
+    def fun(self, z: np.ndarray, s: float, jacobian: bool) -> Evaluation: ...
+
+    def dfun_ds(self, z: np.ndarray, s: float) -> np.ndarray: ...
+
+    def scale(self, z: np.ndarray) -> np.ndarray: ...
+
+    def accept(self, z: np.ndarray, payload) -> None: ...
+
+    def on_failure(self) -> bool: ...
+
+
+class CurveProblem(Protocol):
+    """``r(x) = 0`` with one equation fewer than unknowns (:func:`arclength`): ``fun(x, jacobian)``,
+    ``accept``, ``on_failure`` and ``jump_mask`` as in :class:`ParameterProblem`; ``stop(x)``: the run
+    ends at the accepted point ``x``; ``rescale(x, scale)``: the arc-length scaling after the accepted
+    point ``x`` (None: keep ``scale``)."""
+
+    jump_mask: np.ndarray | None
+
+    def fun(self, x: np.ndarray, jacobian: bool) -> Evaluation: ...
+
+    def accept(self, x: np.ndarray, payload) -> None: ...
+
+    def on_failure(self) -> bool: ...
+
+    def stop(self, x: np.ndarray) -> bool: ...
+
+    def rescale(self, x: np.ndarray, scale: np.ndarray) -> np.ndarray | None: ...
+
+
+def _no_history(*_args) -> None:
+    """An ``accept`` that keeps no history."""
+
+
+def _unchanged() -> bool:
+    """An ``on_failure`` that changes nothing (the failed step is halved)."""
+    return False
+
+
+def _keep_scale(_x, _scale) -> None:
+    """A ``rescale`` that keeps the scaling."""
+    return None
+
+
+@dataclass(frozen=True)
+class ParameterFunctions:
+    """A :class:`ParameterProblem` of plain functions (tests, studies)."""
+
+    fun: Callable[[np.ndarray, float, bool], Evaluation]
+    dfun_ds: Callable[[np.ndarray, float], np.ndarray]
+    scale: Callable[[np.ndarray], np.ndarray]
+    accept: Callable = _no_history
+    on_failure: Callable[[], bool] = _unchanged
+    jump_mask: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class CurveFunctions:
+    """A :class:`CurveProblem` of plain functions (tests, studies)."""
+
+    fun: Callable[[np.ndarray, bool], Evaluation]
+    stop: Callable[[np.ndarray], bool]
+    rescale: Callable = _keep_scale
+    accept: Callable = _no_history
+    on_failure: Callable[[], bool] = _unchanged
+    jump_mask: np.ndarray | None = None
+
+
 def _angle(a: np.ndarray, b: np.ndarray) -> float:
     """Angle [rad] between two vectors (π/2 if one vanishes)."""
     na, nb = np.linalg.norm(a), np.linalg.norm(b)
@@ -198,14 +303,22 @@ def _unit(v):
     return v / np.linalg.norm(v)
 
 
-def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
-            scale: Callable, steps: StepControl, tol: float, max_iter: int,
-            accept: Callable | None = None, s_start: float | None = None,
-            on_failure: Callable[[], bool] | None = None,
-            jump_mask: np.ndarray | None = None, max_angle: float | None = None,
-            corner: float = 100.0) -> NaturalResult:
-    """Continuation in the scalar parameter ``s`` from ``s_start`` (default ``grid[0]``; ``z0``
-    is the guess there) over the increasing ``grid``, landing exactly on every grid value (so grid
+
+@dataclass
+class _Trusted:
+    """The last trusted point of a natural run: parameter ``s``, unknowns ``z``, tangent ``dz/ds`` and
+    the solver the next corrector starts from."""
+
+    s: float
+    z: np.ndarray
+    tangent: np.ndarray
+    fac: Any
+
+
+def natural(problem: ParameterProblem, z0: np.ndarray, grid: np.ndarray, steps: StepControl,
+            s_start: float | None = None) -> NaturalResult:
+    """Continuation of ``problem`` in the scalar parameter ``s`` from ``s_start`` (default ``grid[0]``;
+    ``z0`` is the guess there) over the increasing ``grid``, landing exactly on every grid value (so grid
     outputs are converged solutions, not interpolants).
 
     Tangents: at a grid value from the LU of its Jacobian, equilibrated, whose condition estimate the
@@ -216,78 +329,76 @@ def natural(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
     off, and one ring of twenty (t036 of the paper design) took twice as long and lost its top point
     (docs/nonlinear_core.md §4.6).
 
-    ``fun(z, s, jacobian) -> (r, J, trivial, n_core, payload)``; ``dfun_ds(z, s)`` is ``∂r/∂s``;
-    ``accept(z, payload)`` is called on every accepted point (e.g. to update a gauge);
-    ``on_failure()`` after a failed corrector: if it returns True the problem has changed (e.g. a
-    rigid-body direction was pinned) and the same step is tried again before it is halved.
-    The step geometry (module docstring) is measured on ``u = [z/(√n·scale(z₀)), s]`` with the
-    tangent ``(dz/ds, 1)`` of every accepted point; in addition a step is rejected when the
-    tangent oriented along the chord points to decreasing ``s`` (a fold in ``s`` between the two
-    points, which natural continuation cannot pass). ``jump_mask``: unknowns the geometry looks
-    at (default all); ``max_angle`` (default ``2·steps.turn``) and ``corner`` as in
-    :func:`arclength`.
+    ``problem.accept`` is called on every accepted point, ``problem.on_failure`` after a failed
+    corrector (:class:`ParameterProblem`). The step geometry (module docstring) is measured on
+    ``u = [z/(√n·scale(z₀)), s]`` with the tangent ``(dz/ds, 1)`` of every accepted point, over the
+    unknowns ``problem.jump_mask``; in addition a step is rejected when the tangent oriented along the
+    chord points to decreasing ``s`` (a fold in ``s`` between the two points, which natural continuation
+    cannot pass).
     """
     grid = np.asarray(grid, float)
     n = grid.size
-    points, status = [None] * n, np.full(n, Status.NOT_REACHED, int)
-    reason = ["not reached"] * n
-    out = NaturalResult(grid, points, status, reason)
+    out = NaturalResult(grid, [None] * n, np.full(n, Status.NOT_REACHED, int), ["not reached"] * n)
     s = grid[0] if s_start is None else min(s_start, grid[0])
-    res = newton(lambda z, jac: fun(z, s, jac), z0, scale, tol, max_iter)
+    res = newton(lambda z, jac: problem.fun(z, s, jac), z0, problem.scale, steps.tol, steps.max_iter)
     if not res.converged:
-        status[0], reason[0] = Status.NO_CONVERGENCE, f"start point: {res.reason}"
+        out.status[0], out.reason[0] = Status.NO_CONVERGENCE, f"start point: {res.reason}"
         return out
-    max_angle = 2 * steps.turn if max_angle is None else max_angle
-    mask = None if jump_mask is None else np.r_[jump_mask, True]
-    root_n = np.sqrt(z0.size)
-    z = res.z
     on_grid = s == grid[0]
-    fac_t, tangent = _natural_tangent(fun, dfun_ds, z, s, res.factorization, scale, exact=on_grid)
-    fac = res.factorization if on_grid else fac_t
-    out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
-    gi = 0
-    if on_grid:
-        _record(out, 0, s, res, accept, fac_t)
-        gi = 1
-    elif accept is not None:
-        accept(z, res.payload)
+    fac_t, tangent = _natural_tangent(problem, res.z, s, res.factorization, exact=on_grid)
+    front, gi = _accept_natural(problem, out, 0, s, res, tangent, fac_t, on_grid)
+    mask = None if problem.jump_mask is None else np.r_[problem.jump_mask, True]
+    root_n = np.sqrt(z0.size)
     ds = steps.initial
-    corrector = steps.corrector_iterations(max_iter)
     while gi < n:
-        s_t = min(s + ds, grid[gi])
+        s_t = min(front.s + ds, grid[gi])
         on_grid = s_t >= grid[gi] - 1e-12 * max(1.0, abs(grid[gi]))
         s_t = grid[gi] if on_grid else s_t
-        z_pred = z + (s_t - s) * tangent
-        res = newton(lambda zz, jac: fun(zz, s_t, jac), z_pred, scale,
-                     steps.corrector_tolerance(tol, s_t - s, on_grid), corrector, factorization=fac,
-                     give_up_damping=steps.give_up_damping, quasi_newton=steps.quasi_newton)
-        why = res.reason
-        if res.converged:
-            fac_t, tangent_t = _natural_tangent(fun, dfun_ds, res.z, s_t, res.factorization, scale,
-                                                exact=on_grid)
-            geometry, fold = _natural_geometry(z, s, tangent, res.z, s_t, tangent_t,
-                                               root_n * scale(z), mask)
-            why = ("fold in s between the points" if fold else
-                   _untrusted(geometry, max_angle, s_t - s <= corner * steps.minimum))
+        res, tangent_t, fac_t, geometry, why = _natural_step(problem, steps, front, s_t, on_grid,
+                                                             root_n, mask)
         if not why:
-            s, z, tangent = s_t, res.z, tangent_t
-            fac = res.factorization if on_grid else fac_t
-            out.branch.append(ContinuationPoint(s, z, res.payload, res.iterations))
-            if on_grid:
-                _record(out, gi, s, res, accept, fac_t)
-                gi += 1
-            elif accept is not None:
-                accept(z, res.payload)
+            front, gi = _accept_natural(problem, out, gi, s_t, res, tangent_t, fac_t, on_grid)
             ds = steps.adapt(ds, res, geometry[0])
             continue
-        if on_failure is not None and on_failure():
+        if problem.on_failure():
             continue
-        ds = 0.5 * (s_t - s)
+        ds = 0.5 * (s_t - front.s)
         if ds < steps.minimum:
-            _stopped(out, range(gi, n), f"step below minimum at s={s:.6g}: {why}",
-                     f"continuation stopped at s={s:.6g}")
+            _stopped(out, range(gi, n), f"step below minimum at s={front.s:.6g}: {why}",
+                     f"continuation stopped at s={front.s:.6g}")
             break
     return out
+
+
+def _natural_step(problem: ParameterProblem, steps: StepControl, front: _Trusted, s_t: float,
+                  on_grid: bool, root_n: float, mask):
+    """Predictor from ``front`` to ``s_t`` and its corrector, with the step's tests (module docstring):
+    ``(result, tangent, solver, geometry, why)`` (``why`` "" for a trusted step)."""
+    z_pred = front.z + (s_t - front.s) * front.tangent
+    res = newton(lambda zz, jac: problem.fun(zz, s_t, jac), z_pred, problem.scale,
+                 steps.corrector_tolerance(s_t - front.s, on_grid), steps.corrector_iterations(),
+                 factorization=front.fac, give_up_damping=steps.give_up_damping,
+                 quasi_newton=steps.quasi_newton)
+    if not res.converged:
+        return res, None, None, None, res.reason
+    fac_t, tangent_t = _natural_tangent(problem, res.z, s_t, res.factorization, exact=on_grid)
+    geometry, fold = _natural_geometry(front.z, front.s, front.tangent, res.z, s_t, tangent_t,
+                                       root_n * problem.scale(front.z), mask)
+    why = ("fold in s between the points" if fold else
+           _untrusted(geometry, steps.angle_limit(), s_t - front.s <= steps.corner * steps.minimum))
+    return res, tangent_t, fac_t, geometry, why
+
+
+def _accept_natural(problem: ParameterProblem, out: NaturalResult, gi: int, s: float, res: NewtonResult,
+                    tangent: np.ndarray, fac_t, on_grid: bool) -> tuple[_Trusted, int]:
+    """Accept the point ``res`` at ``s`` (tangent ``tangent`` from the solver ``fac_t``): on the branch,
+    and solved for grid value ``gi`` if ``on_grid``; the new trusted point and the next grid index."""
+    out.branch.append(ContinuationPoint(s, res.z, res.payload, res.iterations))
+    if on_grid:
+        _record(out, gi, s, res, fac_t)
+        gi += 1
+    problem.accept(res.z, res.payload)
+    return _Trusted(s, res.z, tangent, res.factorization if on_grid else fac_t), gi
 
 
 def _natural_geometry(z0, s0, tangent0, z1, s1, tangent1, w, mask):
@@ -301,27 +412,26 @@ def _natural_geometry(z0, s0, tangent0, z1, s1, tangent1, w, mask):
     return _step_geometry(t0, t1, chord, mask), t1[-1] <= 0
 
 
-def _natural_tangent(fun, dfun_ds, z, s, previous, scale, exact=False):
+def _natural_tangent(problem: ParameterProblem, z, s, previous, exact=False):
     """Solver of the Jacobian at ``(z, s)`` and the tangent ``dz/ds = −J⁻¹ ∂r/∂s``. The solver is
     :func:`ringdamper.nonlinear.newton.linear_solver` on the factorisation of the solver ``previous``
     or, with ``exact``, the LU of the Jacobian itself, equilibrated by the scales ``scale(z)``, which
     gives the point its condition estimate (:meth:`ringdamper.nonlinear.newton.Factorization.condition`)."""
-    _, J, trivial, n_core, _ = fun(z, s, True)
+    ev = problem.fun(z, s, True)
     if exact:
-        fac = Factorization(dense(J), trivial, n_core, overwrite=is_operator(J), scale=scale(z))
+        fac = Factorization(dense(ev.J), ev.trivial, ev.n_core, overwrite=is_operator(ev.J),
+                            scale=problem.scale(z))
     else:
-        fac = linear_solver(J, trivial, n_core, previous, 1.0 / scale(z))
-    return fac, fac.solve(-dfun_ds(z, s))
+        fac = linear_solver(ev.J, ev.trivial, ev.n_core, previous, 1.0 / problem.scale(z))
+    return fac, fac.solve(-problem.dfun_ds(z, s))
 
 
-def _record(out: NaturalResult, i: int, s: float, res: NewtonResult, accept, fac=None):
+def _record(out: NaturalResult, i: int, s: float, res: NewtonResult, fac=None):
     """Grid value ``i`` solved: ``res`` at ``s``, with the condition estimate of ``fac``, the exact
     factorisation of its Jacobian (:func:`_natural_tangent`), if given."""
     condition = np.nan if fac is None else fac.condition()
     out.points[i] = ContinuationPoint(s, res.z, res.payload, res.iterations, condition)
     out.status[i], out.reason[i] = Status.CONVERGED, ""
-    if accept is not None:
-        accept(res.z, res.payload)
 
 
 def _stopped(out: NaturalResult, indices, why: str, after: str):
@@ -342,64 +452,33 @@ class ArclengthResult:
     reason: str
 
 
-def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.ndarray,
-              steps: StepControl, tol: float, max_iter: int, stop: Callable[[np.ndarray], bool],
-              max_points: int, max_angle: float | None = None, corner: float = 100.0,
-              rescale: Callable | None = None, accept: Callable | None = None,
-              on_failure: Callable[[], bool] | None = None,
-              jump_mask: np.ndarray | None = None) -> ArclengthResult:
-    """Pseudo-arc-length continuation of ``r(z) = 0`` (one fewer equation than unknowns).
-
-    ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)``, ``J`` of shape ``(n−1, n)``; ``z0`` a
-    solution; ``direction`` the initial orientation; ``scale`` the variable scaling (arc length is
-    measured on ``u = z / scale``; the corrector stays on the hyperplane through the predictor
-    normal to the tangent). Every accepted point gets its tangent from a fresh Jacobian (the null
-    vector of ``J``, oriented along the chord of the step). A step is trusted by the geometry
-    tests of the module docstring (``max_angle``, default ``2·steps.turn``; the turn test is
-    waived below ``corner × steps.minimum``, the chord–tangent consistency test never) and
-    otherwise halved from the last trusted point. Stops with status 0 when ``stop(z)`` is true.
-    ``rescale(z, scale) -> scale`` may update the scaling after every accepted point (the tangent
-    is carried over in unscaled form); ``accept(z, payload)`` is called on the start and every
-    accepted point (history updates). ``tangents`` and ``scales`` in the result hold the unit
-    tangent (in ``u``) and the scaling in force at every point. ``on_failure()`` and
-    ``jump_mask`` as in :func:`natural`.
+def arclength(problem: CurveProblem, z0: np.ndarray, direction: np.ndarray, scale: np.ndarray,
+              steps: StepControl) -> ArclengthResult:
+    """Pseudo-arc-length continuation of ``problem`` (:class:`CurveProblem`, one fewer equation than
+    unknowns, its Jacobian of shape ``(n−1, n)``) from the solution ``z0``, oriented along
+    ``direction``; ``scale`` the variable scaling (arc length is measured on ``u = z / scale``; the
+    corrector stays on the hyperplane through the predictor normal to the tangent). Every accepted
+    point gets its tangent from a fresh Jacobian (the null vector of ``J``, oriented along the chord of
+    the step). A step is trusted by the geometry tests of the module docstring
+    (:meth:`StepControl.angle_limit`; the turn test is waived below ``steps.corner × steps.minimum``,
+    the chord–tangent consistency test never) and otherwise halved from the last trusted point. Stops
+    with status 0 at an accepted point where ``problem.stop`` is true, after
+    :meth:`StepControl.arc_points` points with MAX_POINTS. ``problem.rescale`` may update the scaling
+    after every accepted point (the tangent is carried over in unscaled form); ``problem.accept`` is
+    called on the start and every accepted point (history updates). ``tangents`` and ``scales`` in the
+    result hold the unit tangent (in ``u``) and the scaling in force at every point.
     """
-    max_angle = 2 * steps.turn if max_angle is None else max_angle
-    r0, J0, trivial0, n_core0, payload0 = fun(z0, True)
-    if accept is not None:
-        accept(z0, payload0)
-    last_fac, t = _tangent(J0, trivial0, n_core0, direction / scale, scale, None)
-    pts, tans, scales = [ContinuationPoint(0.0, z0, payload0, 0)], [t], [scale]
+    ev0 = problem.fun(z0, True)
+    problem.accept(z0, ev0.payload)
+    last_fac, t = _tangent(ev0, direction / scale, scale, None)
+    pts, tans, scales = [ContinuationPoint(0.0, z0, ev0.payload, 0)], [t], [scale]
     z, s, ds = z0, 0.0, steps.initial
-    corrector = steps.corrector_iterations(max_iter)
-
-    def step(d, ds, fac):
-        """Corrector from ``z + ds·d`` on the hyperplane normal to ``d`` (scaled), and the tests
-        against the trusted tangent ``t``: ``(result, tangent, factorisation, turn, why)``."""
-        zp, plane = z + ds * d * scale, d / scale
-
-        def on_plane(zz, jac):
-            r, J, trivial, n_core, payload = fun(zz, jac)
-            Jb = bordered(J, rows=plane) if jac else None
-            return np.append(r, plane @ (zz - zp)), Jb, trivial, n_core, payload
-
-        res = newton(on_plane, zp, lambda _: scale, tol, corrector, factorization=fac,
-                     give_up_damping=steps.give_up_damping, quasi_newton=steps.quasi_newton)
-        if not res.converged:
-            return res, None, None, 0.0, res.reason
-        chord = (res.z - z) / scale
-        _, J1, trivial1, n_core1, _ = fun(res.z, True)
-        fac1, t1 = _tangent(J1, trivial1, n_core1, chord, scale, res.factorization, steps.tangent_rtol)
-        geometry = _step_geometry(t, t1, chord, jump_mask)
-        why = _untrusted(geometry, max_angle, ds <= corner * steps.minimum)
-        if not why and _angle(-t, chord) <= np.pi / 4:
-            why = "corrector went back along the branch"
-        return res, t1, fac1, geometry[0], why
-
-    while len(pts) < max_points:
+    smallest = steps.corner * steps.minimum
+    while len(pts) < steps.arc_points():
+        step = _ArcStep(problem, steps, z, t, scale)
         res, t1, fac1, turn, why = step(t, ds, last_fac)
-        if why and ds <= corner * steps.minimum:
-            turned = _turn_corner(step, fun, z, t, ds, corner * steps.minimum, scale)
+        if why and ds <= smallest:
+            turned = _turn_corner(step, ds, smallest)
             if turned:
                 ds, (res, t1, fac1, turn, why) = turned
         if not why:
@@ -407,33 +486,64 @@ def arclength(fun: Callable, z0: np.ndarray, direction: np.ndarray, scale: np.nd
             pts.append(ContinuationPoint(s, z, res.payload, res.iterations))
             tans.append(t)
             scales.append(scale)
-            if accept is not None:
-                accept(z, res.payload)
-            if stop(z):
+            problem.accept(z, res.payload)
+            if problem.stop(z):
                 return ArclengthResult(pts, tans, scales, Status.CONVERGED, "")
-            if rescale is not None:
-                new = rescale(z, scale)
+            new = problem.rescale(z, scale)
+            if new is not None:
                 t, scale = _unit(t * scale / new), new
             ds = steps.adapt(ds, res, turn)
             continue
-        if on_failure is not None and on_failure():
+        if problem.on_failure():
             continue
         ds *= 0.5
         if ds < steps.minimum:
-            return ArclengthResult(pts, tans, scales, Status.NO_CONVERGENCE,
-                                   f"step below minimum: {why}")
-    return ArclengthResult(pts, tans, scales, Status.MAX_POINTS, f"{max_points} points reached")
+            return ArclengthResult(pts, tans, scales, Status.NO_CONVERGENCE, f"step below minimum: {why}")
+    return ArclengthResult(pts, tans, scales, Status.MAX_POINTS, f"{steps.arc_points()} points reached")
 
 
-def _turn_corner(step, fun, z, t, ds, largest, scale):
+@dataclass
+class _ArcStep:
+    """One arc-length step from the trusted point ``z`` (unit tangent ``t`` in ``u = z / scale``)."""
+
+    problem: CurveProblem
+    steps: StepControl
+    z: np.ndarray
+    t: np.ndarray
+    scale: np.ndarray
+
+    def __call__(self, d, ds, fac):
+        """Corrector from ``z + ds·d`` on the hyperplane normal to ``d`` (scaled), and the tests
+        against the trusted tangent ``t``: ``(result, tangent, factorisation, turn, why)``."""
+        z, scale, steps = self.z, self.scale, self.steps
+        zp, plane = z + ds * d * scale, d / scale
+
+        def on_plane(zz, jac):
+            return self.problem.fun(zz, jac).extended(plane @ (zz - zp), rows=plane)
+
+        res = newton(on_plane, zp, lambda _: scale, steps.tol, steps.corrector_iterations(), factorization=fac,
+                     give_up_damping=steps.give_up_damping, quasi_newton=steps.quasi_newton)
+        if not res.converged:
+            return res, None, None, 0.0, res.reason
+        chord = (res.z - z) / scale
+        fac1, t1 = _tangent(self.problem.fun(res.z, True), chord, scale, res.factorization,
+                            steps.tangent_rtol)
+        geometry = _step_geometry(self.t, t1, chord, self.problem.jump_mask)
+        why = _untrusted(geometry, steps.angle_limit(), ds <= steps.corner * steps.minimum)
+        if not why and _angle(-self.t, chord) <= np.pi / 4:
+            why = "corrector went back along the branch"
+        return res, t1, fac1, geometry[0], why
+
+
+def _turn_corner(step: _ArcStep, ds, largest):
     """Past a corner of a piecewise-smooth branch where it turns back (by more than 90°), the
     hyperplane normal to the incoming tangent ``t`` misses the outgoing branch. Its direction is
     the null vector of the Jacobian just past the corner (at the predictor ``z + ds·t``); both
     orientations are tried as predictor directions with steps ``ds``, ``4·ds``, … up to
     ``largest``; each must pass :func:`arclength`'s tests (and not lead back along the incoming
     branch). Returns ``step``'s tuple, or None."""
-    _, J, trivial, n_core, _ = fun(z + ds * t * scale, True)
-    fac, ahead = _tangent(J, trivial, n_core, t, scale, None)
+    z, t, scale = step.z, step.t, step.scale
+    fac, ahead = _tangent(step.problem.fun(z + ds * t * scale, True), t, scale, None)
     sizes = [ds * 4.0 ** k for k in range(int(np.log(largest / ds) / np.log(4.0)) + 1)]
     for size in sizes:
         for d in (ahead, -ahead):
@@ -443,23 +553,20 @@ def _turn_corner(step, fun, z, t, ds, largest, scale):
     return None
 
 
-def _tangent(J, trivial, n_core, direction_u, scale, previous, rtol=krylov.RTOL):
-    """Solver of ``J`` bordered by ``direction_u / scale`` (:func:`ringdamper.nonlinear.newton.linear_solver`,
-    on the factorisation of the solver ``previous``, if any, to ``rtol``) and the unit tangent in scaled
-    variables: ``J (scale·t) = 0``, oriented along ``direction_u``."""
-    e = np.zeros(J.shape[1])
+def _tangent(ev: Evaluation, direction_u, scale, previous, rtol=krylov.RTOL):
+    """Solver of the Jacobian of ``ev`` bordered by ``direction_u / scale``
+    (:func:`ringdamper.nonlinear.newton.linear_solver`, on the factorisation of the solver ``previous``,
+    if any, to ``rtol``) and the unit tangent in scaled variables: ``J (scale·t) = 0``, oriented along
+    ``direction_u``."""
+    e = np.zeros(ev.J.shape[1])
     e[-1] = 1.0
-    fac = linear_solver(bordered(J, rows=direction_u / scale), trivial, n_core, previous, 1.0 / scale,
-                        rtol)
+    bordered = ev.extended(rows=direction_u / scale)
+    fac = linear_solver(bordered.J, ev.trivial, ev.n_core, previous, 1.0 / scale, rtol)
     return fac, _unit(fac.solve(e) / scale)
 
 
-def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, grid: np.ndarray,
-                           scale: Callable, steps: StepControl, tol: float, max_iter: int,
-                           accept: Callable | None = None, s_start: float | None = None,
-                           on_failure: Callable[[], bool] | None = None,
-                           jump_mask: np.ndarray | None = None,
-                           max_points: int | None = None, floor: float | None = None) -> NaturalResult:
+def natural_then_arclength(problem: ParameterProblem, z0: np.ndarray, grid: np.ndarray, steps: StepControl,
+                           s_start: float | None = None, floor: float | None = None) -> NaturalResult:
     """:func:`natural`, and where it stops, pseudo-arc-length continuation of ``r(z, s) = 0`` in
     ``x = [z, s]`` from its last accepted point, oriented towards increasing ``s``: it follows the
     branch through folds in ``s`` (where natural continuation must stop). Each remaining grid
@@ -472,33 +579,27 @@ def natural_then_arclength(fun: Callable, dfun_ds: Callable, z0: np.ndarray, gri
     ``steps.minimum`` (:class:`NaturalThenArclength`). Points keep statuses and reasons as in
     :func:`natural`; ``branch`` holds every accepted point of both parts (``s`` then not
     monotone). Arc length is measured on ``[z/(√n·scale(z)), s]``: the RMS relative change of the
-    unknowns and the change of ``s`` weigh alike, except the unknowns outside ``jump_mask``, which
-    weigh ``FREE_WEIGHT``. ``max_points`` bounds the arc-length points (default
-    ``400·max(1, 0.5 / steps.maximum)``, so that a smaller maximum step does not run out of
-    points). ``floor``: the arc-length part stops where the branch, past a fold, turns back below
-    ``s = floor`` (None: it follows the branch until ``max_points``); a caller that wants the branch
-    through one point continued to values above it passes that point's ``s``: a value reached only
-    after the branch came back past its start lies on another sheet."""
+    unknowns and the change of ``s`` weigh alike, except the unknowns outside ``problem.jump_mask``,
+    which weigh ``FREE_WEIGHT``. The arc-length points are bounded by :meth:`StepControl.arc_points`.
+    ``floor``: the arc-length part stops where the branch, past a fold, turns back below
+    ``s = floor`` (None: it follows the branch until its points run out); a caller that wants the
+    branch through one point continued to values above it passes that point's ``s``: a value reached
+    only after the branch came back past its start lies on another sheet."""
     grid = np.asarray(grid, float)
-    out = natural(fun, dfun_ds, z0, grid, scale, steps, tol, max_iter, accept=accept,
-                  s_start=s_start, on_failure=on_failure, jump_mask=jump_mask)
+    out = natural(problem, z0, grid, steps, s_start=s_start)
     todo = np.flatnonzero(out.status == Status.NO_CONVERGENCE)
     if not todo.size or not out.branch:                  # complete, or no start point
         return out
-    if max_points is None:
-        max_points = int(400 * max(1.0, 0.5 / steps.maximum))
-    past_fold = NaturalThenArclength(fun, dfun_ds, scale, steps, tol, max_iter, out, int(todo[0]),
-                                     accept, jump_mask, floor)
-    past_fold.run(on_failure, max_points)
+    NaturalThenArclength(problem, steps, out, int(todo[0]), floor).run()
     return out
 
 
 class NaturalThenArclength:
-    """The arc-length part of :func:`natural_then_arclength`. Pseudo-arc-length continuation
-    (:func:`arclength`, Allgower & Georg 2003, ch. 6, with its step control and geometry tests)
-    of ``r(x) = r(z, s) = 0`` in ``x = [z, s]`` (:meth:`residual`: the Jacobian bordered by
-    ``∂r/∂s``; :meth:`scaling`: the arc-length metric) from the last accepted point of the
-    natural run ``out``, towards increasing ``s``. Every accepted point (:meth:`accept_point`)
+    """The arc-length part of :func:`natural_then_arclength`, a :class:`CurveProblem`. Pseudo-arc-length
+    continuation (:func:`arclength`, Allgower & Georg 2003, ch. 6, with its step control and geometry
+    tests) of ``r(x) = r(z, s) = 0`` in ``x = [z, s]`` (:meth:`fun`: the Jacobian bordered by
+    ``∂r/∂s``; :meth:`rescale`: the arc-length metric) from the last accepted point of the
+    natural run ``out``, towards increasing ``s``. Every accepted point (:meth:`accept`)
     solves the grid values it passed at fixed ``s`` (:meth:`solve_grid_value`), bisecting the
     bracket on the branch where the solution does not fit it (:meth:`bisect`); :meth:`run` then
     gives the values left unsolved their statuses. State: ``previous``, the last accepted branch
@@ -510,55 +611,54 @@ class NaturalThenArclength:
     #: arc that turns by θ ≤ ``max_angle`` stays within θ/8 of its chord).
     BRACKET_FIT = 0.25
 
-    def __init__(self, fun: Callable, dfun_ds: Callable, scale: Callable, steps: StepControl,
-                 tol: float, max_iter: int, out: NaturalResult, first_missing: int,
-                 accept: Callable | None, jump_mask: np.ndarray | None, floor: float | None = None):
-        self.fun, self.dfun_ds, self.scale, self.steps = fun, dfun_ds, scale, steps
-        self.floor = floor
-        self.tol, self.max_iter, self.out, self.accept = tol, max_iter, out, accept
+    def __init__(self, problem: ParameterProblem, steps: StepControl, out: NaturalResult,
+                 first_missing: int, floor: float | None = None):
+        self.problem, self.steps, self.out, self.floor = problem, steps, out, floor
         self.first = out.branch[-1]
         self.root_n = np.sqrt(self.first.z.size)
-        self.mask = None if jump_mask is None else np.r_[jump_mask, True]
-        self.keep = slice(None) if self.mask is None else self.mask
+        self.jump_mask = None if problem.jump_mask is None else np.r_[problem.jump_mask, True]
+        self.keep = slice(None) if self.jump_mask is None else self.jump_mask
         self.start = first_missing
         self.next = first_missing
         self.previous = np.r_[self.first.z, self.first.s]
         self.why = ""
         self.peak = self.first.s
 
-    def run(self, on_failure: Callable[[], bool] | None, max_points: int) -> None:
+    def run(self) -> None:
         """Arc length from the natural run's last point towards increasing ``s`` until every grid
         value is solved, then the statuses of the values left unsolved."""
         x0 = self.previous
         grid = self.out.grid
         direction = np.zeros(x0.size)
         direction[-1] = 1.0
-        run = arclength(self.residual, x0, direction, self.scaling(x0), self.steps, self.tol,
-                        self.max_iter, stop=lambda x: self.next >= grid.size,
-                        max_points=max_points, rescale=self.scaling, accept=self.accept_point,
-                        on_failure=on_failure, jump_mask=self.mask)
+        run = arclength(self, x0, direction, self.rescale(x0), self.steps)
         unfilled = [j for j in range(self.start, grid.size) if self.out.points[j] is None]
         why = self.why or f"arc length from s={self.first.s:.6g}: {run.reason}"
         _stopped(self.out, unfilled, why, "continuation stopped")
 
-    def residual(self, x, jac):
+    def fun(self, x, jac) -> Evaluation:
         """``r(z, s)`` at ``x = [z, s]`` and its Jacobian ``[∂r/∂z, ∂r/∂s]``."""
-        r, J, trivial, n_core, payload = self.fun(x[:-1], x[-1], jac)
-        Jx = bordered(J, columns=self.dfun_ds(x[:-1], x[-1])) if jac else None
-        return r, Jx, trivial, n_core, payload
+        ev = self.problem.fun(x[:-1], x[-1], jac)
+        return ev.extended(columns=self.problem.dfun_ds(x[:-1], x[-1]) if jac else None)
 
-    def scaling(self, x, _previous=None):
+    def rescale(self, x, _previous=None):
         """Arc-length scaling at ``x`` (the previous scaling is not needed); unknowns outside
         ``jump_mask`` weigh ``FREE_WEIGHT``."""
-        sc = np.r_[self.root_n * self.scale(x[:-1]), 1.0]
-        if self.mask is not None:
-            sc[~self.mask] /= FREE_WEIGHT
+        sc = np.r_[self.root_n * self.problem.scale(x[:-1]), 1.0]
+        if self.jump_mask is not None:
+            sc[~self.jump_mask] /= FREE_WEIGHT
         return sc
 
-    def accept_point(self, x, payload):
+    def on_failure(self) -> bool:
+        return self.problem.on_failure()
+
+    def stop(self, _x) -> bool:
+        """Every grid value solved, or the run given up (:meth:`accept`)."""
+        return self.next >= self.out.grid.size
+
+    def accept(self, x, payload):
         """Accepted arc-length point: record it, then solve the grid values it passed."""
-        if self.accept is not None:
-            self.accept(x[:-1], payload)
+        self.problem.accept(x[:-1], payload)
         if x is self.previous:                            # the start point, already recorded
             return
         out, grid = self.out, self.out.grid
@@ -575,7 +675,7 @@ class NaturalThenArclength:
             if res is None:
                 self.next = grid.size                        # stop; statuses set by run
                 break
-            _record(out, k, sk, res, None)
+            _record(out, k, sk, res)
             self.next += 1
         self.previous = x
 
@@ -584,12 +684,12 @@ class NaturalThenArclength:
         from the secant interpolant: ``(NewtonResult, "")`` or ``(None, why)``. Trusted within
         :attr:`BRACKET_FIT` bracket lengths of the interpolant, otherwise the bracket is bisected
         on the branch and the half that brackets ``sk`` tried, down to ``steps.minimum``."""
-        sc = self.scaling(xa)
+        sc = self.rescale(xa)
         while True:
             w = (sk - xa[-1]) / (xb[-1] - xa[-1])
             guess = (1 - w) * xa + w * xb
-            res = newton(lambda zz, jj: self.fun(zz, sk, jj), guess[:-1], self.scale, self.tol,
-                         self.max_iter)
+            res = newton(lambda zz, jj: self.problem.fun(zz, sk, jj), guess[:-1], self.problem.scale,
+                         self.steps.tol, self.steps.max_iter)
             length = np.linalg.norm(((xb - xa) / sc)[self.keep])
             if res.converged:
                 off = np.linalg.norm(((np.r_[res.z, sk] - guess) / sc)[self.keep])
@@ -615,10 +715,8 @@ class NaturalThenArclength:
         plane, mid = chord / sc, 0.5 * (xa + xb)
 
         def on_plane(xx, jac):
-            r, J, trivial, n_core, payload = self.residual(xx, jac)
-            Jb = bordered(J, rows=plane) if jac else None
-            return np.append(r, plane @ (xx - mid)), Jb, trivial, n_core, payload
+            return self.fun(xx, jac).extended(plane @ (xx - mid), rows=plane)
 
-        res = newton(on_plane, mid, lambda _: sc, self.tol, self.max_iter)
+        res = newton(on_plane, mid, lambda _: sc, self.steps.tol, self.steps.max_iter)
         ok = res.converged and np.linalg.norm((res.z - mid) / sc) <= np.linalg.norm(chord)
         return res.z if ok else None

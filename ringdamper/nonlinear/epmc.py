@@ -23,20 +23,26 @@ solved by harmonic balance (condensed, :mod:`ringdamper.nonlinear.condensed`) wi
 Continuation in ``s = log α`` lands on every value of the requested α grid (so outputs on the
 common grid are converged solutions, not interpolants). The start is the linearised stuck mode
 (contact springs ``(kn, kt, kt)`` on preloaded pairs, :meth:`Structure.stuck_modes`).
+
+A solve is an :class:`EPMCProblem`: the condensed model (fixed, shared by every solve on it) and the
+solve's own gauge state (:class:`ringdamper.nonlinear.condensed.GaugeState`), which its evaluations,
+accepted points and failed steps replace. :meth:`Backbone.problem` is the problem of one point of a
+backbone, to restart from it; :func:`resolve_point` and :func:`continue_point` solve a point again at
+another truncation or amplitude.
 """
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes, squared_amplitude, structural_damping
+from ringdamper.nonlinear.condensed import CondensedHBM, GaugeState, pole_modes, squared_amplitude, structural_damping
 from ringdamper.nonlinear.continuation import ContinuationPoint, NaturalResult, StepControl, natural_then_arclength
 from ringdamper.nonlinear.elements import Elements
 from ringdamper.nonlinear.fourier import default_nt
 from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.jacobian import bordered
+from ringdamper.nonlinear.jacobian import Evaluation, bordered
 from ringdamper.nonlinear.newton import newton
 from ringdamper.nonlinear.structure import Structure
 from ringdamper.status import Status
@@ -50,8 +56,8 @@ class Backbone:
     modes, ``pinned`` the rigid-body directions gauged at each point and
     ``drift`` (largest dropped rigid-body equilibrium, see the gauge). ``branch``
     holds every accepted continuation point ``(α, ω, ξ)``; ``model`` the condensed HBM and
-    ``phase_index`` the unknown fixed by the phase condition (what :meth:`state` and
-    :class:`EPMCProblem` need to restart from a point), ``pole_window`` the ``(lo, hi)`` band of
+    ``phase_index`` the unknown fixed by the phase condition (what :meth:`problem` needs to restart
+    from a point), ``pole_window`` the ``(lo, hi)`` band of
     :func:`pole_modes` that chose its explicit modes and ``drift_tol`` the DRIFT limit (what
     :func:`resolve_point` needs to build the same problem at another H); ``amplitude`` the row
     ``w`` whose harmonic-1 amplitude α is (None: the modal amplitude); ``condition`` the κ₁
@@ -79,12 +85,17 @@ class Backbone:
     amplitude: np.ndarray | None = None
     condition: np.ndarray | None = None
 
-    def state(self, i: int) -> np.ndarray:
-        """Unknown vector ``z = [y, ω, ξ]`` of grid point ``i``; sets the model's pinned
-        rigid-body directions to those that point was solved with (so a restart reproduces it)."""
-        self.model.pinned = self.pinned[i].copy()
+    def unknowns(self, i: int) -> np.ndarray:
+        """Unknown vector ``z = [y, ω, ξ]`` of grid point ``i``."""
         y = self.model.pack(self.d[i], [e[i] for e in self.eta])
         return np.r_[y, self.omega[i], self.xi[i]]
+
+    def problem(self, i: int) -> "EPMCProblem":
+        """The EPMC problem of grid point ``i`` on the backbone's model, in the gauge state that point was
+        solved in (its pinned rigid-body directions, reference its zero-mode positions): a restart from
+        :meth:`unknowns` reproduces it."""
+        return EPMCProblem(self.model, self.phase_index, self.drift_tol, self.amplitude,
+                           gauge=self.model.gauge_at(self.unknowns(i), self.pinned[i]))
 
     @property
     def H(self) -> int:
@@ -101,30 +112,38 @@ class Backbone:
 
 
 class EPMCProblem:
-    """Residual ``[r_core; amplitude; phase]`` of ``z = [y, ω, ξ]`` at ``s = log α``; ``amplitude``:
-    the row ``w`` (n,) whose harmonic-1 amplitude α is, None for the modal amplitude."""
+    """One EPMC solve (a :class:`ringdamper.nonlinear.continuation.ParameterProblem`): residual
+    ``[r_core; amplitude; phase]`` of ``z = [y, ω, ξ]`` at ``s = log α`` on the condensed ``model``
+    (fixed, may be shared), in the solve's gauge state ``gauge`` (default the model's
+    :meth:`~ringdamper.nonlinear.condensed.CondensedHBM.initial_gauge`). ``gauge`` is the one thing that
+    changes: every evaluation (:meth:`fun`), accepted point (:meth:`accept`) and failed step
+    (:meth:`on_failure`) replaces it by the state it returns. ``amplitude``: the row ``w`` (n,) whose
+    harmonic-1 amplitude α is, None for the modal amplitude."""
 
     def __init__(self, model: CondensedHBM, phase_index: int, drift_tol: float = 1e-8,
-                 amplitude: np.ndarray | None = None):
+                 amplitude: np.ndarray | None = None, gauge: GaugeState | None = None):
         self.model, self.phase_index, self.drift_tol = model, phase_index, drift_tol
         self.amplitude = amplitude
         self.row = None if amplitude is None else amplitude @ model.modal[1].Phi     # ρ = w Φ_1
         self.n = model.n_core + 2
+        self.gauge = model.initial_gauge() if gauge is None else gauge
+        self.jump_mask = self._jump_mask()
 
-    def fun(self, z: np.ndarray, s: float, jacobian: bool = True):
+    def fun(self, z: np.ndarray, s: float, jacobian: bool = True) -> Evaluation:
         m = self.model
         y, omega, xi = z[:-2], z[-2], z[-1]
-        ev = m.evaluate(y, omega, xi, jacobian)
+        ev = m.evaluate(y, omega, xi, self.gauge, jacobian)
+        self.gauge = ev.state
         n2 = squared_amplitude(ev.eta[1], self.row)
         r = np.concatenate((ev.r, (0.5 * np.log(n2) - s, y[self.phase_index])))
         if not jacobian:
-            return r, None, None, m.n_core, ev
+            return Evaluation(r, None, None, m.n_core, ev)
         n2, g, d_w, d_x = m.amplitude2(ev, omega, xi, self.row)
         amplitude = np.concatenate((g, (d_w, d_x))) / (2 * n2)
         phase = np.zeros(self.n)
         phase[self.phase_index] = 1.0
         J = bordered(ev.J, np.c_[ev.dr_domega, ev.dr_dxi], np.vstack([amplitude, phase]))
-        return r, J, ev.trivial, m.n_core, ev
+        return Evaluation(r, J, ev.trivial, m.n_core, ev)
 
     def dfun_ds(self, z, s):
         e = np.zeros(self.n)
@@ -135,10 +154,12 @@ class EPMCProblem:
         """Convergence scales: :meth:`CondensedHBM.core_scale` for ``y``, ω for ω and ξ."""
         return np.concatenate((self.model.core_scale(z[:-2]), (abs(z[-2]), abs(z[-2]))))
 
-    def accept(self, z, ev):
-        self.model.accept(z[:-2], ev)
+    def accept(self, z, ev) -> None:
+        """The accepted point ``z`` (evaluated as ``ev``): the gauge state after it
+        (:meth:`ringdamper.nonlinear.condensed.CondensedHBM.accepted`)."""
+        self.gauge = self.model.accepted(self.gauge, z[:-2], ev)
 
-    def jump_mask(self) -> np.ndarray:
+    def _jump_mask(self) -> np.ndarray:
         """Unknowns of the branch-jump test: all but the mean (harmonic-0) contact slots and
         rigid-body/explicit modal coordinates. Where the last pairs holding the ring's rigid
         motion let go, its mean position (and with it every DC slot) moves by much more than the
@@ -152,8 +173,10 @@ class EPMCProblem:
 
     def on_failure(self) -> bool:
         """After a failed step: pin the rigid-body directions whose hold was lost on the way
-        (:meth:`CondensedHBM.pin_seen`); True if that changed the problem (retry the step)."""
-        return self.model.pin_seen()
+        (:meth:`ringdamper.nonlinear.condensed.GaugeState.pin_seen`); True if that changed the problem
+        (retry the step)."""
+        self.gauge, added = self.gauge.pin_seen()
+        return added
 
 
 #: fresh Jacobians a corrector of the EPMC continuation may use before its step is rejected and halved
@@ -202,8 +225,11 @@ def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, 
     continuation then ran out of points at 0.99 of the limit and converged at 0.9 or below).
     ``drift_tol``: relative size of the dropped rigid-body equilibrium above which a converged
     point gets status DRIFT.
-    ``max_arc_points``: arc-length points allowed past a fold in α (default that of
-    :func:`ringdamper.nonlinear.continuation.natural_then_arclength`).
+    ``max_arc_points``: arc-length points allowed past a fold in α (default
+    :meth:`ringdamper.nonlinear.continuation.StepControl.arc_points`). ``tol`` and ``max_iter`` are the
+    Newton settings of every solve (they replace those of ``steps``).
+    The condensed model's receptance series are formed about the frequency the first Newton solve
+    starts from (:class:`ringdamper.nonlinear.condensed.CondensedHBM`, ``expansion``).
     """
     t0 = time.perf_counter()
     alpha = np.asarray(alpha, float)
@@ -212,29 +238,27 @@ def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, 
     if H < 1:
         raise ValueError("the EPMC needs H >= 1")
     nt = default_nt(H) if nt is None else nt
-    steps = steps or default_steps()
+    steps = replace(steps or default_steps(), tol=tol, max_iter=max_iter, max_points=max_arc_points)
     contacts = contacts.for_pairs(structure.npairs)
     omega0, xi0, phi = _stuck_mode(structure, contacts, mode, omega_target)
     phi = phi / _measure_of_mode(structure, amplitude, phi)     # unit amplitude in the grid's measure
     window = (omega0 * (1 - 2 * pole_band), omega0 * (1 + pole_band))
-    model = CondensedHBM(structure, contacts, H, nt, explicit=pole_modes(structure, H, *window),
-                         damping=structural_damping(structure, H))
-    if gauge_reference is not None:
-        model.eta_ref = np.asarray(gauge_reference, float).copy()
-    _, phase_index = _initial_guess(model, phi, omega0, 1.0)
-    problem = EPMCProblem(model, phase_index, drift_tol, amplitude)
     onset = stick_limit(structure, contacts, phi)
-    stuck = _stuck_points(problem, phi, omega0, alpha[alpha < (1 - 1e-9) * onset]) if stuck_shortcut else []
+    below_onset = alpha[alpha < (1 - 1e-9) * onset] if stuck_shortcut else alpha[:0]
+    model = CondensedHBM(structure, contacts, H, nt, explicit=pole_modes(structure, H, *window),
+                         damping=structural_damping(structure, H),
+                         expansion=(omega0, 0.0 if below_onset.size else xi0))   # the first Newton's start
+    gauge = model.initial_gauge(None if gauge_reference is None else np.asarray(gauge_reference, float))
+    _, phase_index = _initial_guess(model, phi, omega0, 1.0, reference=gauge.reference)
+    problem = EPMCProblem(model, phase_index, drift_tol, amplitude, gauge=gauge)
+    stuck = _stuck_points(problem, phi, omega0, below_onset)
     rest = alpha[len(stuck):]
     run = None
     if rest.size:
         if alpha_start is None:
             alpha_start = min(rest[0], 0.5 * (onset if onset > 0 else linear_limit(structure, contacts, phi)))
-        z0, _ = _initial_guess(model, phi, omega0, alpha_start, xi0)
-        run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log(rest), problem.scale,
-                                     steps, tol, max_iter, accept=problem.accept,
-                                     s_start=np.log(alpha_start), on_failure=problem.on_failure,
-                                     jump_mask=problem.jump_mask(), max_points=max_arc_points)
+        z0, _ = _initial_guess(model, phi, omega0, alpha_start, xi0, reference=problem.gauge.reference)
+        run = natural_then_arclength(problem, z0, np.log(rest), steps, s_start=np.log(alpha_start))
     return _collect(_joined(stuck, run, np.log(alpha)), model, alpha, problem, time.perf_counter() - t0,
                     window)
 
@@ -319,7 +343,7 @@ def _stuck_points(problem: EPMCProblem, phi, omega0: float, alpha) -> list:
     if not alpha.size:
         return []
     a1 = alpha[0]
-    z_lin, _ = _initial_guess(problem.model, phi, omega0, a1)
+    z_lin, _ = _initial_guess(problem.model, phi, omega0, a1, reference=problem.gauge.reference)
     first = newton(lambda z, jac: problem.fun(z, np.log(a1), jac), z_lin, problem.scale, 1e-12)
     if not first.converged:
         return []
@@ -327,8 +351,9 @@ def _stuck_points(problem: EPMCProblem, phi, omega0: float, alpha) -> list:
     for a in alpha:
         z = first.z.copy()
         z[:-2] *= a / a1
-        r, _, _, _, ev = problem.fun(z, np.log(a), jacobian=False)
-        b = -r
+        evaluation = problem.fun(z, np.log(a), jacobian=False)
+        ev = evaluation.payload
+        b = -evaluation.r
         b[-2] *= a / a1
         dz = fac.solve(b)
         dz[-2:] *= a1 / a
@@ -366,24 +391,25 @@ def resolve_point(backbone: Backbone, i: int, H: int, nt: int | None = None, tol
     (another grid point: ``lower`` its backbone at this backbone's H, ``j`` its index there,
     ``higher`` its one-point backbone at ``H``), the change that raising H made to that point.
     ``models``: the problems at higher truncations that earlier calls for points of the same backbone
-    built, by ``(H, nt)``; the one needed is taken from it (its gauge state set for point ``i``) or built
-    and added, so that its modal data and receptance series are formed once for all points
-    (:class:`ringdamper.nonlinear.receptance.Receptance`; the series then serves every point within its
-    reach, to rounding)."""
+    built, by ``(H, nt)``; the one needed is taken from it or built and added (its receptance series
+    formed about this point's start), so that its modal data and receptance series are formed once for
+    all points (:class:`ringdamper.nonlinear.receptance.Receptance`; the series then serves every point
+    within its reach, to rounding). The model is fixed: each point's solve has its own gauge state
+    (that of point ``i``: its pinned directions, reference its start's zero-mode positions)."""
     t0 = time.perf_counter()
     nt = default_nt(H) if nt is None else nt
     model = None if models is None else models.get((H, nt))
     if model is None:
-        model = _higher_model(backbone, H, nt)
+        model = _higher_model(backbone, H, nt, _start_frequency(backbone, i, neighbour))
         if models is not None:
             models[H, nt] = model
     z0 = _padded_state(backbone, i, model)
     if neighbour is not None:
         lower, j, higher = neighbour
-        z0 += higher.state(0) - _padded_state(lower, j, model)
-    model.start_at(z0, backbone.pinned[i])
+        z0 += higher.unknowns(0) - _padded_state(lower, j, model)
     phase = _same_unknown(backbone.model, model, backbone.phase_index)
-    problem = EPMCProblem(model, phase, backbone.drift_tol, backbone.amplitude)
+    problem = EPMCProblem(model, phase, backbone.drift_tol, backbone.amplitude,
+                          gauge=model.gauge_at(z0, backbone.pinned[i]))
     s = np.log(backbone.alpha[i])
     res = newton(lambda z, jac: problem.fun(z, s, jac), z0, problem.scale, tol, max_iter, quasi_newton=True)
     if not res.converged:
@@ -394,13 +420,24 @@ def resolve_point(backbone: Backbone, i: int, H: int, nt: int | None = None, tol
                     backbone.pole_window), ""
 
 
-def _higher_model(backbone: Backbone, H: int, nt: int) -> CondensedHBM:
+def _start_frequency(backbone: Backbone, i: int, neighbour: tuple | None) -> tuple[float, float]:
+    """``(ω, ξ)`` of the start of :func:`resolve_point` for point ``i`` (the point's, shifted as its
+    neighbour's by raising H, the same arithmetic as the start vector's)."""
+    omega, xi = backbone.omega[i], backbone.xi[i]
+    if neighbour is not None:
+        lower, j, higher = neighbour
+        omega, xi = omega + (higher.omega[0] - lower.omega[j]), xi + (higher.xi[0] - lower.xi[j])
+    return omega, xi
+
+
+def _higher_model(backbone: Backbone, H: int, nt: int, expansion: tuple[float, float]) -> CondensedHBM:
     """The problem of ``backbone`` at ``H`` harmonics and ``nt`` AFT samples: same structure and
-    contacts, the explicit modes of the backbone's pole window (the same modes of the shared harmonics)."""
+    contacts, the explicit modes of the backbone's pole window (the same modes of the shared harmonics),
+    its receptance series formed about ``expansion = (ω, ξ)``."""
     base = backbone.model
     model = CondensedHBM(base.structure, base.contacts, H, nt,
                          explicit=pole_modes(base.structure, H, *backbone.pole_window),
-                         damping=structural_damping(base.structure, H))
+                         damping=structural_damping(base.structure, H), expansion=expansion)
     if not all(np.array_equal(a, b) for a, b in zip(base.S, model.S)):
         raise ValueError("the explicit modes of the shared harmonics differ between the two truncations")
     return model
@@ -423,18 +460,15 @@ def continue_point(backbone: Backbone, j: int, alpha: float, tol: float = 1e-8, 
     ``alpha`` (above α_j; ``steps`` and ``max_arc_points`` as in :func:`epmc`): ``(one-point
     backbone, "")``, or ``(None, why)`` if it does not get there, or if the branch folds back below
     α_j on the way (a value reached after that lies on another sheet of the branch than point ``j``).
-    The problem, gauge position and pinned directions are those of point ``j``; the model is shared
-    with ``backbone``."""
+    The problem, gauge position and pinned directions are those of point ``j`` (:meth:`Backbone.problem`);
+    the model is shared with ``backbone``."""
     t0 = time.perf_counter()
     model = backbone.model
-    z0 = backbone.state(j)
-    model.start_at(z0, backbone.pinned[j])
-    problem = EPMCProblem(model, backbone.phase_index, backbone.drift_tol, backbone.amplitude)
-    run = natural_then_arclength(problem.fun, problem.dfun_ds, z0, np.log([alpha]), problem.scale,
-                                 steps or default_steps(), tol, max_iter,
-                                 accept=problem.accept, s_start=np.log(backbone.alpha[j]),
-                                 on_failure=problem.on_failure, jump_mask=problem.jump_mask(),
-                                 max_points=max_arc_points, floor=np.log(backbone.alpha[j]))
+    z0 = backbone.unknowns(j)
+    problem = backbone.problem(j)
+    steps = replace(steps or default_steps(), tol=tol, max_iter=max_iter, max_points=max_arc_points)
+    run = natural_then_arclength(problem, z0, np.log([alpha]), steps, s_start=np.log(backbone.alpha[j]),
+                                 floor=np.log(backbone.alpha[j]))
     if run.points[0] is None:
         return None, f"continuation at H = {model.H} from alpha = {backbone.alpha[j]:.4g}: {run.reason[0]}"
     return _collect(run, model, np.array([alpha]), problem, time.perf_counter() - t0,
@@ -451,9 +485,10 @@ def _same_unknown(base: CondensedHBM, model: CondensedHBM, k: int) -> int:
     return model.eta_slices[h].start + k - base.eta_slices[h].start
 
 
-def _initial_guess(model: CondensedHBM, phi: np.ndarray, omega0: float, alpha0: float, xi0: float = 0.0):
+def _initial_guess(model: CondensedHBM, phi: np.ndarray, omega0: float, alpha0: float, xi0: float = 0.0,
+                   reference: np.ndarray | None = None):
     """Linear mode ``φ`` (real, or complex with ``ξ₀``: :func:`_stuck_mode`) at amplitude ``α₀``, phase
-    rotated so the phase unknown is real."""
+    rotated so the phase unknown is real, its zero modes at the gauge reference ``reference`` (default 0)."""
     m1 = model.modal[1]
     hd = model.structure.harmonics[1]
     d1 = hd.B @ phi
@@ -467,8 +502,8 @@ def _initial_guess(model: CondensedHBM, phi: np.ndarray, omega0: float, alpha0: 
     eta = [np.zeros(mh.w2.size, complex) for mh in model.modal]
     eta[1] = rot * eta1
     y = model.pack(d, eta)
-    if model.zero_modes.size:
-        y[model.eta_slices[0].start + model.zero_modes] = model.eta_ref
+    if model.zero_modes.size and reference is not None:
+        y[model.eta_slices[0].start + model.zero_modes] = reference
     phase = (model.slot_index(1, True, k) if k < model.p
              else model.eta_index(1, k - model.p, True))
     return np.r_[y, omega0, xi0], phase

@@ -14,29 +14,51 @@ from __future__ import annotations
 
 import numpy as np
 
-from ringdamper.nonlinear.condensed import CondensedHBM
-from ringdamper.nonlinear.jacobian import bordered
+from ringdamper.nonlinear.condensed import CondensedHBM, CoreEval, GaugeState
+from ringdamper.nonlinear.jacobian import Evaluation, bordered
 
 
 class ForcedProblem:
-    """Residual of ``z = [y, ω]`` (one equation fewer than unknowns: the continuation closes it)."""
+    """One forced-response solve: residual of ``z = [y, ω]`` (one equation fewer than unknowns: the
+    continuation closes it) on the condensed ``model`` (fixed), in the solve's gauge state ``gauge``
+    (default the model's initial one), which every evaluation, accepted point (:meth:`accept`) and
+    failed step (:meth:`on_failure`) replaces by the state it returns, as in
+    :class:`ringdamper.nonlinear.epmc.EPMCProblem`."""
 
-    def __init__(self, model: CondensedHBM):
+    def __init__(self, model: CondensedHBM, gauge: GaugeState | None = None):
         if not model.forced:
             raise ValueError("the condensed model must be built with forced=True")
         self.model = model
+        self.gauge = model.initial_gauge() if gauge is None else gauge
 
-    def fun(self, z: np.ndarray, jacobian: bool = True):
-        ev = self.model.evaluate(z[:-1], z[-1], 0.0, jacobian)
+    def fun(self, z: np.ndarray, jacobian: bool = True) -> Evaluation:
+        ev = self.evaluate(z[:-1], z[-1], jacobian)
         J = bordered(ev.J, ev.dr_domega) if jacobian else None
-        return ev.r, J, ev.trivial, self.model.n_core, ev
+        return Evaluation(ev.r, J, ev.trivial, self.model.n_core, ev)
 
     def at_frequency(self, omega: float):
         """Residual of ``y`` alone at fixed ω (square)."""
         def fun(y, jacobian=True):
-            ev = self.model.evaluate(y, omega, 0.0, jacobian)
-            return ev.r, ev.J, ev.trivial, self.model.n_core, ev
+            ev = self.evaluate(y, omega, jacobian)
+            return Evaluation(ev.r, ev.J, ev.trivial, self.model.n_core, ev)
         return fun
+
+    def evaluate(self, y: np.ndarray, omega: float, jacobian: bool) -> CoreEval:
+        """The model's evaluation at ``(y, ω)`` (ξ = 0) in the solve's gauge state, which takes the state
+        after it."""
+        ev = self.model.evaluate(y, omega, 0.0, self.gauge, jacobian)
+        self.gauge = ev.state
+        return ev
+
+    def accept(self, z: np.ndarray, ev: CoreEval) -> None:
+        """The accepted point ``z = [y, ω]`` (evaluated as ``ev``): the gauge state after it."""
+        self.gauge = self.model.accepted(self.gauge, z[:-1], ev)
+
+    def on_failure(self) -> bool:
+        """After a failed step: pin the rigid-body directions whose hold was lost on the way; True if
+        that changed the problem (retry the step)."""
+        self.gauge, added = self.gauge.pin_seen()
+        return added
 
     def scale(self, z: np.ndarray) -> np.ndarray:
         return np.concatenate((self.model.core_scale(z[:-1]), (abs(z[-1]),)))

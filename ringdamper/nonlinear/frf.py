@@ -6,7 +6,7 @@ structural damping the modal ratio ``zeta_s``. The curve starts from a converged
 solve at ``omega_start`` (seeded with the linearised stuck response) and follows the branch with
 pseudo-arc-length steps until ω passes ``omega_end`` (status 1 if it turns back a whole band below
 ``omega_start`` instead). A rigid-body hold of the ring lost within a failed step is pinned and
-the step retried, as in the EPMC (:meth:`ringdamper.nonlinear.condensed.CondensedHBM.pin_seen`). The
+the step retried, as in the EPMC (:meth:`ringdamper.nonlinear.forced.ForcedProblem.on_failure`). The
 resonance peak is the maximum of the response measure along the branch, refined between the
 neighbours of every sampled maximum near the largest (:func:`resonance_peak`) by a bounded Brent
 search over the arc-length coordinate (each evaluation a converged solution on the hyperplane
@@ -31,7 +31,7 @@ comes from Hill's method on the full modal harmonic-balance Jacobian
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import minimize_scalar
@@ -124,37 +124,22 @@ def forced_response(structure: Structure, contacts: FrictionContacts | Elements,
     contacts = contacts.for_pairs(structure.npairs)
     damping = structural_damping(structure, H, zeta_s)
     model = CondensedHBM(structure, contacts, H, nt, explicit=explicit, damping=damping,
-                         forced=True, gamma=gamma)
+                         forced=True, gamma=gamma, expansion=(omega_start, 0.0))   # the first Newton's start
     problem = ForcedProblem(model)
     y0 = problem.linear_guess(omega_start, contacts.stuck_stiffness().ravel())
     res = newton(problem.at_frequency(omega_start), y0, model.core_scale, tol, max_iter)
     if not res.converged:
         return _frf(gamma, zeta_s, [], [], [], Status.NO_CONVERGENCE,
                     f"start point: {res.reason}", problem, tol, max_iter, drift_tol, t0)
-    model.accept(res.z, res.payload)
     z0 = np.r_[res.z, omega_start]
-    span = abs(omega_end - omega_start)
-    sign = np.sign(omega_end - omega_start)
-
-    root_n = np.sqrt(model.n_core)
-
-    def rescale(z, scale):
-        """Running maxima of the unknowns, the response part weighted by ``1/√n`` so that the arc
-        length measures the RMS relative change of the response and the relative change of ω
-        alike (otherwise hundreds of contact unknowns would dominate the step)."""
-        return np.maximum(scale, np.r_[root_n * model.core_scale(z[:-1]), span])
-
+    problem.accept(z0, res.payload)
+    branch = ForcedBranch(problem, omega_start, omega_end)
     direction = np.zeros(z0.size)
-    direction[-1] = sign
-    def outside(z):
-        """Past ``omega_end``, or turned back (after a fold) a whole band before ``omega_start``."""
-        return sign * (z[-1] - omega_end) >= 0 or sign * (omega_start - z[-1]) >= span
-
-    run = arclength(problem.fun, z0, direction, rescale(z0, np.zeros(z0.size)), steps, tol,
-                    max_iter, stop=outside, max_points=max_points, rescale=rescale,
-                    accept=lambda z, ev: model.accept(z[:-1], ev), on_failure=model.pin_seen)
+    direction[-1] = branch.sign
+    run = arclength(branch, z0, direction, branch.rescale(z0, np.zeros(z0.size)),
+                    replace(steps, tol=tol, max_iter=max_iter, max_points=max_points))
     status, reason = run.status, run.reason
-    if status == Status.CONVERGED and sign * (run.points[-1].z[-1] - omega_end) < 0:
+    if status == Status.CONVERGED and branch.sign * (run.points[-1].z[-1] - omega_end) < 0:
         status, reason = Status.NO_CONVERGENCE, "the branch turned back below omega_start"
     frf = _frf(gamma, zeta_s, run.points, run.tangents, run.scales, status, reason,
                problem, tol, max_iter, drift_tol, t0)
@@ -164,17 +149,43 @@ def forced_response(structure: Structure, contacts: FrictionContacts | Elements,
     return frf
 
 
+class ForcedBranch:
+    """The forced-response branch from ``omega_start`` towards ``omega_end`` as a
+    :class:`ringdamper.nonlinear.continuation.CurveProblem` of the solve ``problem``: its residual and
+    history hooks, the arc-length scaling (:meth:`rescale`) and the end of the band (:meth:`stop`)."""
+
+    jump_mask = None
+
+    def __init__(self, problem: ForcedProblem, omega_start: float, omega_end: float):
+        self.problem, self.omega_start, self.omega_end = problem, omega_start, omega_end
+        self.fun, self.accept, self.on_failure = problem.fun, problem.accept, problem.on_failure
+        self.span = abs(omega_end - omega_start)
+        self.sign = np.sign(omega_end - omega_start)
+        self.root_n = np.sqrt(problem.model.n_core)
+
+    def rescale(self, z, scale):
+        """Running maxima of the unknowns, the response part weighted by ``1/√n`` so that the arc
+        length measures the RMS relative change of the response and the relative change of ω
+        alike (otherwise hundreds of contact unknowns would dominate the step)."""
+        return np.maximum(scale, np.r_[self.root_n * self.problem.model.core_scale(z[:-1]), self.span])
+
+    def stop(self, z) -> bool:
+        """Past ``omega_end``, or turned back (after a fold) a whole band before ``omega_start``."""
+        return (self.sign * (z[-1] - self.omega_end) >= 0
+                or self.sign * (self.omega_start - z[-1]) >= self.span)
+
+
 def point_stability(frf: FRF, tol: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:
     """Largest real part of the Floquet exponents [1/s] of every branch point and its stability
     (``Re λ ≤ tol·ω``), by Hill's method on the full modal Jacobian
-    (:func:`ringdamper.nonlinear.stability.modal_hill_matrices`)."""
-    model = frf.problem.model
+    (:func:`ringdamper.nonlinear.stability.modal_hill_matrices`), each at its accepted point's gauged
+    directions (the evaluations leave the solve's gauge state as it was)."""
+    model, gauge = frf.problem.model, frf.problem.gauge
     growth = np.empty(len(frf.points))
     stable = np.empty(len(frf.points), bool)
     for i, p in enumerate(frf.points):
         omega = p.z[-1]
-        ev = model.evaluate(p.z[:-1], omega, 0.0, True)
-        ev.gauge = p.payload.gauge                   # the directions held when it was accepted
+        ev = replace(model.evaluate(p.z[:-1], omega, 0.0, gauge, True), gauge=p.payload.gauge)
         J, D1 = modal_hill_matrices(model, ev, omega)
         lam = hill_exponents(J, D1, omega)
         growth[i], stable[i] = np.max(lam.real), is_stable(lam, omega, tol)
@@ -240,7 +251,7 @@ def _refine_peak(frf: FRF, i: int, k: int, rtol: float) -> Peak | None:
     started from one factorisation of the bordered Jacobian at ``i``). None if the neighbours do
     not straddle the hyperplane or the solve fails."""
     model, problem = frf.problem.model, frf.problem
-    model.accept(frf.points[i].z[:-1], frf.points[i].payload)      # gauge state of point i
+    problem.accept(frf.points[i].z, frf.points[i].payload)      # gauge state of point i
     scale, t = frf.scales[i], frf.tangents[i]
     zi = frf.points[i].z
     plane = t / scale
@@ -248,8 +259,8 @@ def _refine_peak(frf: FRF, i: int, k: int, rtol: float) -> Peak | None:
     if not sig[0] < 0 < sig[1]:
         return None
     cache = {}
-    _, J, trivial, n_core, _ = problem.fun(zi, True)
-    start = Factorization(dense(bordered(J, rows=plane)), trivial, n_core, overwrite=True)   # chord start
+    ev = problem.fun(zi, True)
+    start = Factorization(dense(bordered(ev.J, rows=plane)), ev.trivial, ev.n_core, overwrite=True)   # chord start
 
     def solve(sigma):
         j = i - 1 if sigma < 0 else i + 1
@@ -257,9 +268,7 @@ def _refine_peak(frf: FRF, i: int, k: int, rtol: float) -> Peak | None:
         guess = zi + w * (frf.points[j].z - zi)
 
         def on_plane(z, jac):
-            r, J, trivial, n_core, ev = problem.fun(z, jac)
-            Jb = bordered(J, rows=plane) if jac else None
-            return np.r_[r, plane @ (z - zi) - sigma], Jb, trivial, n_core, ev
+            return problem.fun(z, jac).extended(plane @ (z - zi) - sigma, rows=plane)
 
         res = newton(on_plane, guess, lambda _: scale, frf.tol, frf.max_iter, factorization=start)
         cache[sigma] = res

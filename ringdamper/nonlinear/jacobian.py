@@ -1,14 +1,19 @@
-"""Jacobians given as matrices or as operators, and their bordering.
+"""Jacobians given as matrices or as operators, their bordering, and the evaluation a problem returns.
 
-A problem's ``fun(z, jacobian)`` (:func:`ringdamper.nonlinear.newton.newton`) may return its Jacobian
-as a dense array or as an operator with ``shape``, ``matvec(v)`` (the product ``J v``, without
+A problem's ``fun(z, jacobian)`` (:func:`ringdamper.nonlinear.newton.newton`) returns an
+:class:`Evaluation` (residual, Jacobian, trivial unknowns, core size, the problem's own payload). It
+may give its Jacobian as a dense array or as an operator with ``shape``, ``matvec(v)`` (the product ``J v``, without
 forming ``J``) and ``toarray(out=None)`` (``J`` formed on demand, into ``out`` if given). An
 operator lets the Newton solve with a lagged factorisation as preconditioner
 (:class:`ringdamper.nonlinear.krylov.LaggedSolver`) and form ``J`` only when that no longer converges.
 The continuation borders Jacobians with extra columns (``∂r/∂s``) and rows (arc-length hyperplane,
-amplitude and phase conditions): :func:`bordered` does that for both kinds.
+amplitude and phase conditions): :func:`bordered` does that for both kinds, and
+:meth:`Evaluation.extended` for an evaluation (its residual and Jacobian together).
 """
 from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -69,3 +74,25 @@ def bordered(J, columns=None, rows=None):
     if is_operator(J):
         return Bordered(J, columns, rows)
     return np.vstack([np.hstack([J, columns]), rows])
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """One evaluation of a system ``r(z) = 0`` for :func:`ringdamper.nonlinear.newton.newton` and the
+    continuation drivers: residual ``r``; Jacobian ``J`` (array or operator; None when not requested);
+    ``trivial``, the unknowns whose columns are unit vectors in the first ``n_core`` rows (eliminated
+    exactly by :class:`ringdamper.nonlinear.newton.Factorization`; None: none); ``payload``, the
+    problem's own evaluation (e.g. a :class:`ringdamper.nonlinear.condensed.CoreEval`), which the
+    solvers hand back with the solution."""
+
+    r: np.ndarray
+    J: Any
+    trivial: np.ndarray | None
+    n_core: int
+    payload: Any
+
+    def extended(self, equations=(), columns=None, rows=None) -> "Evaluation":
+        """The system with the residuals ``equations`` appended, its Jacobian bordered by ``columns`` on
+        the right and ``rows`` below (:func:`bordered`; still None where it was not computed)."""
+        J = None if self.J is None else bordered(self.J, columns, rows)
+        return Evaluation(np.append(self.r, equations), J, self.trivial, self.n_core, self.payload)

@@ -175,7 +175,8 @@ def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarr
            quasi_newton: bool = False) -> NewtonResult:
     """Newton's method with Jacobian reuse and damping for ``r(z) = 0``.
 
-    ``fun(z, jacobian) -> (r, J, trivial, n_core, payload)`` (``J`` None when not requested).
+    ``fun(z, jacobian) -> Evaluation`` (:class:`ringdamper.nonlinear.jacobian.Evaluation`; ``J`` None
+    when not requested).
     Converged when the step ``δz`` computed at ``z`` satisfies ``max |δz| / scale(z) ≤ tol``; ``z``
     and its evaluation are returned (outputs are consistent with ``z``), with the factorisation
     last used (a tangent predictor may reuse it).
@@ -231,18 +232,17 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_
     last_newton = np.inf                         # the Newton correction at the last fresh Jacobian
     while True:
         if fresh:
-            if ev[1] is None:
+            if ev.J is None:
                 ev = fun(z, True)
-            r, J, trivial, n_core, payload = ev
-            if not (np.all(np.isfinite(r)) and (is_operator(J) or np.all(np.isfinite(J)))):
-                return NewtonResult(z, False, it, payload, None, "non-finite residual or Jacobian",
+            if not (np.all(np.isfinite(ev.r)) and (is_operator(ev.J) or np.all(np.isfinite(ev.J)))):
+                return NewtonResult(z, False, it, ev.payload, None, "non-finite residual or Jacobian",
                                     n_jac)
-            fac = factorize(J, trivial, n_core)
+            fac = factorize(ev.J, ev.trivial, ev.n_core)
             n_jac += 1
             dz = steps = None
-        payload = ev[4]
+        payload = ev.payload
         if dz is None:
-            dz = _correction(fac, ev[0])
+            dz = _correction(fac, ev.r)
         sc = scale(z)
         if quasi_newton and steps is None:
             steps = QuasiNewtonSteps(sc**-2.0)       # the scaled Euclidean product
@@ -268,7 +268,7 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_
             lam = 1.0
             while True:
                 trial = fun(z + lam * dz, False)
-                corr = _correction(fac, trial[0])
+                corr = _correction(fac, trial.r)
                 bar = np.max(np.abs(corr) / sc)
                 if bar <= (1.0 - lam / 4) * step or lam <= floor:
                     break
@@ -282,7 +282,7 @@ def _iterate(fun, z, scale, tol, max_iter, fac, theta_max, chord_budget, lambda_
             z, ev, dz, fresh = z + lam * dz, trial, corr, lam < 1.0
             continue
         trial = fun(z + dz, False)                   # chord (or quasi-Newton) step on ``fac``
-        corr = contracted = _correction(fac, trial[0])
+        corr = contracted = _correction(fac, trial.r)
         if steps is not None:
             corr, contracted = steps.correction(corr, dz)
         theta = np.max(np.abs(contracted) / sc) / step

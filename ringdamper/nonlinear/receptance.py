@@ -9,7 +9,8 @@ needs at every factorisation is
 
 Most condensed modes of a Craig–Bampton model lie far above ``hω`` (the campaign's rings: 90 % of the
 543 modes above 40 hω, the constraint modes of the stiff contact springs). For those *far* modes,
-``ω_r² > FAR² |s₀|`` at the first evaluation ``s₀``, the geometric series
+``ω_r² > FAR² |s₀|`` at the expansion point ``s₀`` (given when the receptance is built: a solve's start
+point, :class:`ringdamper.nonlinear.condensed.CondensedHBM`), the geometric series
 
     1 / (ω_r² − s) = Σ_k s^k / ω_r^{2(k+1)},   |s| / ω_r² ≤ q = |s| / min_far ω_r²
 
@@ -29,7 +30,7 @@ variable, but a damping coefficient per mode. With ``x = u / ω_r`` and ``β_r =
 
 the expansion of a rational function whose two poles lie on ``|x| = 1`` for ``β < 2`` (``x² − iβx − 1 = 0``),
 so that ``|P_k| ≤ k + 1`` (``P_k`` is ``(−i)^k U_k(β/2)``, a Chebyshev polynomial of the second kind,
-bounded by ``k + 1`` on ``[−1, 1]``). For the far modes (``ω_r > FAR·u₀`` at the first evaluation ``u₀``,
+bounded by ``k + 1`` on ``[−1, 1]``). For the far modes (``ω_r > FAR·u₀`` at the expansion point ``u₀``,
 and ``β_r ≤ 1``) the part of ``G`` is ``Σ_{k<K} u^k M_k``, ``M_k = Ψ_F diag(P_k(β_r) ω_r^{−(k+2)}) Ψ_Fᴴ``,
 with ``K`` such that the remainder bound ``Σ_{k≥K} (k + 1) q^k`` stays below :data:`TOL`
 (:func:`damped_terms_needed`, ``q = u / min_far ω_r``).
@@ -40,7 +41,7 @@ import sys
 
 import numpy as np
 
-#: a mode is far when ω_r exceeds this multiple of |s₀|^½ (s₀: the first evaluation)
+#: a mode is far when ω_r exceeds this multiple of |s₀|^½ (s₀: the expansion point)
 FAR = 10.0
 #: bound on the relative remainder of the series
 TOL = 1e-17
@@ -60,19 +61,19 @@ def terms_needed(q: float) -> int:
 
 class Receptance:
     """``G(s)`` of the module docstring for the modes ``w2`` (ω_r², positive) with contact rows ``Psi``
-    (p × m) and ``PsiH = Psiᴴ``; the far modes' terms are formed at the first call."""
+    (p × m) and ``PsiH = Psiᴴ``; the far modes' terms are formed about ``s0`` when it is built, and
+    nothing changes after that."""
 
     terms_needed = staticmethod(terms_needed)
 
-    def __init__(self, w2: np.ndarray, Psi: np.ndarray, PsiH: np.ndarray):
+    def __init__(self, w2: np.ndarray, Psi: np.ndarray, PsiH: np.ndarray, s0: complex):
         self.w2, self.Psi, self.PsiH = w2, Psi, PsiH
-        self.terms: list | None = None
+        self.terms: list = []
         self.near = self.far_min = None
+        self._build(s0)
 
     def __call__(self, s: complex) -> np.ndarray:
         """The receptance at the series variable ``s`` (``u`` for :class:`DampedReceptance`)."""
-        if self.terms is None:
-            self._build(s)
         K = self.terms_needed(abs(s) / self.far_min) if self.far_min else 0
         if K > len(self.terms):
             return self.direct(s, slice(None))
@@ -122,13 +123,13 @@ def damped_terms_needed(q: float) -> int:
 class DampedReceptance(Receptance):
     """``G(u) = Ψ diag(1 / (ω_r² − u² + i u c_r)) Ψᴴ`` for the modes ``w2`` (ω_r², positive) with viscous modal
     damping coefficients ``c`` and contact rows ``Psi`` (p × m), ``PsiH = Psiᴴ``: the far modes by the series
-    of the module docstring (formed at the first call), the others summed directly."""
+    of the module docstring (formed about ``u0`` when it is built), the others summed directly."""
 
     terms_needed = staticmethod(damped_terms_needed)
 
-    def __init__(self, w2: np.ndarray, c: np.ndarray, Psi: np.ndarray, PsiH: np.ndarray):
-        super().__init__(w2, Psi, PsiH)
+    def __init__(self, w2: np.ndarray, c: np.ndarray, Psi: np.ndarray, PsiH: np.ndarray, u0: float):
         self.c = np.asarray(c, float)
+        super().__init__(w2, Psi, PsiH, u0)
 
     def direct(self, u: float, modes) -> np.ndarray:
         """``Σ_r ψ_r ψ_rᴴ / (ω_r² − u² + i u c_r)`` over ``modes``."""

@@ -112,15 +112,15 @@ def test_frf_peaks_agree_with_eebm_on_a_cyclic_blisk_with_a_ring():
 
 
 def test_forced_response_pins_lost_rigid_body_holds(monkeypatch):
-    """The forced response hands the model's ``pin_seen`` to the continuation as its failure hook,
-    as the EPMC does (without it the forced responses of rings whose last stuck pairs release the
-    ring stall or run away; measured on the campaign's optimum ring)."""
+    """The forced response hands its solve's ``on_failure`` (pin the holds lost, ``GaugeState.pin_seen``)
+    to the continuation as its failure hook, as the EPMC does (without it the forced responses of rings
+    whose last stuck pairs release the ring stall or run away; measured on the campaign's optimum ring)."""
     import ringdamper.nonlinear.frf as frf
 
     hooks = []
 
     def spy(*args, **kwargs):
-        hooks.append(kwargs.get("on_failure"))
+        hooks.append(args[0].on_failure)                    # arclength(problem, ...)
         return arclength(*args, **kwargs)
 
     arclength = frf.arclength
@@ -129,5 +129,5 @@ def test_forced_response_pins_lost_rigid_body_holds(monkeypatch):
     w = st.stuck_modes(c.stuck_stiffness().ravel())[0][0]
     res = frf.forced_response(st, c, 0.05, 0.98 * w, 1.02 * w, H=1, nt=32, zeta_s=1e-3)
     assert res.status in (0, 3)
-    assert len(hooks) == 1 and hooks[0].__name__ == "pin_seen"
-    assert hooks[0].__self__ is res.problem.model
+    assert len(hooks) == 1 and hooks[0].__name__ == "on_failure"
+    assert hooks[0].__self__ is res.problem

@@ -107,7 +107,7 @@ def test_higher_h_continuation_takes_the_arc_budget_given(gap, monkeypatch):
         return resolve(*args, **kwargs) if calls[0] == 1 else (None, "refused")
 
     def recorded(*args, **kwargs):
-        budgets.append(kwargs.get("max_points"))
+        budgets.append(args[3].max_points)                 # natural_then_arclength(problem, z0, grid, steps)
         return arc(*args, **kwargs)
 
     monkeypatch.setattr(adaptive_module, "resolve_point", first_only)

@@ -102,7 +102,7 @@ def test_stuck_points_share_the_first_points_condition_number(backbone):
     """The stuck shortcut's points (iterations 0, zero ξ) get the κ of the first point, which equals
     their own computed from their Jacobians (the scaling argument of the module docstring), as reported;
     the slipping points get their own; the backbone's model is left as it was (every attribute the same
-    object: the gauge state the evaluations set stays out of it)."""
+    object: the model is fixed, the gauge state lives in each solve)."""
     bb = backbone
     state = dict(vars(bb.model))
     kappa = backbone_conditions(bb)

@@ -1,11 +1,14 @@
 """Continuation robustness: the dNNM continuation crosses the stick-to-slip transition
 with every grid point converged and no gap or reversal in α; impossible requests end with a
 recorded status, never an exception."""
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
 from ringdamper.nonlinear.epmc import epmc, linear_limit
 from ringdamper.nonlinear.frf import forced_response
+from ringdamper.nonlinear.jacobian import Evaluation
 from ringdamper.status import Status
 
 from .systems import multi_dof, two_dof
@@ -95,10 +98,10 @@ def test_points_between_grid_values_converged_loosely_leave_the_grid_points_unch
 
     tight = StepControl(initial=0.05, minimum=1e-5, maximum=0.1)
     loose = StepControl(initial=0.05, minimum=1e-5, maximum=0.1, between=1e-5)
-    assert loose.corrector_tolerance(1e-11, 0.05, on_grid=True) == 1e-11
-    assert loose.corrector_tolerance(1e-11, 0.05, on_grid=False) == 1e-5
-    assert loose.corrector_tolerance(1e-11, 1e-4, on_grid=False) == pytest.approx(1e-7)
-    assert tight.corrector_tolerance(1e-11, 0.05, on_grid=False) == 1e-11
+    assert replace(loose, tol=1e-11).corrector_tolerance(0.05, on_grid=True) == 1e-11
+    assert replace(loose, tol=1e-11).corrector_tolerance(0.05, on_grid=False) == 1e-5
+    assert replace(loose, tol=1e-11).corrector_tolerance(1e-4, on_grid=False) == pytest.approx(1e-7)
+    assert replace(tight, tol=1e-11).corrector_tolerance(0.05, on_grid=False) == 1e-11
     st, c = multi_dof(H=3)
     _, phi = st.stuck_modes(c.stuck_stiffness().ravel())
     alpha = linear_limit(st, c, phi[:, 2]) * np.logspace(-0.5, 1.5, 5)
@@ -132,8 +135,6 @@ def test_fold_in_alpha_is_passed_by_arc_length():
     15 %, rises again) where natural continuation must stop. The arc-length fallback follows
     the fold; every grid point is reached, its solution satisfies the residual at its exact α,
     and it lies on the first crossing of the branch."""
-    from ringdamper.nonlinear.epmc import EPMCProblem
-
     from .systems import free_body
 
     st, c = free_body(H=3, normal_coupling=0.3)
@@ -144,10 +145,9 @@ def test_fold_in_alpha_is_passed_by_arc_length():
     assert np.any(np.diff(a) < 0)                                    # the fold was followed
     top = np.argmax(a[:np.argmax(np.diff(a) < 0) + 1])
     assert a[top] < alpha[-1] and np.min(a[top:]) < 0.9 * a[top]
-    problem = EPMCProblem(bb.model, bb.phase_index)
     for i in (len(alpha) - 1,):                                      # the point past the fold
-        z = bb.state(i)
-        r = problem.fun(z, np.log(alpha[i]), False)[0]
+        z = bb.unknowns(i)
+        r = bb.problem(i).fun(z, np.log(alpha[i]), False).r
         assert abs(r[-2]) < 1e-10 and np.max(np.abs(r[:-2])) < 1e-8 * np.max(np.abs(z[:-2]))
     assert bb.omega[-1] < 0.7 * bb.omega[0]                          # far along the branch
 
@@ -156,20 +156,20 @@ def test_jump_test_can_leave_out_unknowns_that_move_freely():
     """``r = [z0 − s, z1 − 10·[s > 0.3]]``: z0 follows s smoothly, z1 (standing for the mean
     position of a ring that lets go) jumps at s = 0.3. The jump test stops natural continuation
     there, unless ``jump_mask`` leaves z1 out; with the mask every grid value is reached."""
-    from ringdamper.nonlinear.continuation import StepControl, natural
+    from ringdamper.nonlinear.continuation import ParameterFunctions, StepControl, natural
 
     def fun(z, s, jac):
         r = np.array([z[0] - s, z[1] - 10.0 * (s > 0.3)])
-        return r, np.eye(2) if jac else None, None, 2, None
+        return Evaluation(r, np.eye(2) if jac else None, None, 2, None)
 
     def dfun_ds(z, s):
         return np.array([-1.0, 0.0])
 
     grid = np.linspace(0.0, 1.0, 6)
-    kw = dict(scale=lambda z: np.ones(2), steps=StepControl(0.1, 1e-4, 0.2), tol=1e-12,
-              max_iter=5)
-    plain = natural(fun, dfun_ds, np.zeros(2), grid, **kw)
-    masked = natural(fun, dfun_ds, np.zeros(2), grid, jump_mask=np.array([True, False]), **kw)
+    steps = StepControl(0.1, 1e-4, 0.2, tol=1e-12, max_iter=5)
+    plain = natural(ParameterFunctions(fun, dfun_ds, lambda z: np.ones(2)), np.zeros(2), grid, steps)
+    masked = natural(ParameterFunctions(fun, dfun_ds, lambda z: np.ones(2), jump_mask=np.array([True, False])),
+                     np.zeros(2), grid, steps)
     assert plain.status[2] == Status.NO_CONVERGENCE and "jumped" in plain.reason[2]
     assert np.all(masked.status == Status.CONVERGED)
     assert masked.points[-1].z == pytest.approx([1.0, 10.0])
@@ -187,7 +187,7 @@ def test_freely_moving_unknowns_do_not_set_the_arc_length(monkeypatch):
     def fun(z, s, jac):
         y, m = z
         r = np.array([y ** 3 - y - s, m - 100.0 * y])
-        return r, np.array([[3 * y ** 2 - 1, 0.0], [-100.0, 1.0]]) if jac else None, None, 2, None
+        return Evaluation(r, np.array([[3 * y ** 2 - 1, 0.0], [-100.0, 1.0]]) if jac else None, None, 2, None)
 
     def dfun_ds(z, s):
         return np.array([-1.0, 0.0])
@@ -197,9 +197,9 @@ def test_freely_moving_unknowns_do_not_set_the_arc_length(monkeypatch):
     def trace():
         y0 = -2.0
         return continuation.natural_then_arclength(
-            fun, dfun_ds, np.array([y0, 100 * y0]), grid, lambda z: np.ones(2),
-            continuation.StepControl(0.2, 1e-4, 0.5), 1e-12, 20, jump_mask=np.array([True, False]),
-            max_points=400)
+            continuation.ParameterFunctions(fun, dfun_ds, lambda z: np.ones(2), jump_mask=np.array([True, False])),
+            np.array([y0, 100 * y0]), grid,
+            continuation.StepControl(0.2, 1e-4, 0.5, tol=1e-12, max_iter=20, max_points=400))
 
     assert continuation.FREE_WEIGHT < 1.0
     weighted = trace()
@@ -222,14 +222,15 @@ def test_arc_length_stops_where_the_branch_turns_back_below_the_floor():
 
     def fun(z, s, jac):
         y = z[0]
-        return np.array([y ** 3 - y - s]), np.array([[3 * y ** 2 - 1]]) if jac else None, None, 1, None
+        return Evaluation(np.array([y ** 3 - y - s]), np.array([[3 * y ** 2 - 1]]) if jac else None, None, 1, None)
 
     grid = np.linspace(-6.0, 6.0, 7)
 
     def trace(floor):
         return continuation.natural_then_arclength(
-            fun, lambda z, s: np.array([-1.0]), np.array([-2.0]), grid, lambda z: np.ones(1),
-            continuation.StepControl(0.2, 1e-4, 0.5), 1e-12, 20, max_points=400, floor=floor)
+            continuation.ParameterFunctions(fun, lambda z, s: np.array([-1.0]), lambda z: np.ones(1)),
+            np.array([-2.0]), grid, continuation.StepControl(0.2, 1e-4, 0.5, tol=1e-12, max_iter=20, max_points=400),
+            floor=floor)
 
     free, low, high = trace(None), trace(-0.5), trace(-0.2)
     for run in (free, low):

@@ -100,15 +100,15 @@ def test_arclength_refuses_a_parallel_branch_at_every_step_size():
     them. A corrector past s = 0.3 lands on the other one, with both end tangents parallel to the
     chord's direction of travel only in s: the chord–tangent test rejects it at every step down to
     the minimum, and the run stops there with a status instead of switching."""
-    from ringdamper.nonlinear.continuation import arclength
+    from ringdamper.nonlinear.continuation import CurveFunctions, arclength
+    from ringdamper.nonlinear.jacobian import Evaluation
 
     def fun(x, jac):
         r = np.array([x[0] - 10.0 * (x[1] > 0.3)])
-        return r, np.array([[1.0, 0.0]]) if jac else None, None, 1, None
+        return Evaluation(r, np.array([[1.0, 0.0]]) if jac else None, None, 1, None)
 
-    run = arclength(fun, np.zeros(2), np.array([0.0, 1.0]), np.ones(2),
-                    StepControl(0.25, 1e-4, 0.5), 1e-12, 5, stop=lambda x: x[1] > 1.0,
-                    max_points=100)
+    run = arclength(CurveFunctions(fun, stop=lambda x: x[1] > 1.0), np.zeros(2), np.array([0.0, 1.0]),
+                    np.ones(2), StepControl(0.25, 1e-4, 0.5, tol=1e-12, max_iter=5, max_points=100))
     assert run.status == Status.NO_CONVERGENCE and "jumped" in run.reason
     assert all(p.z[0] == 0.0 for p in run.points)
     assert 0.3 - 1e-3 < run.points[-1].z[1] <= 0.3

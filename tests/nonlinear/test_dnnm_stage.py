@@ -266,11 +266,10 @@ def test_where_the_continuation_stopped_is_recorded(chain, monkeypatch):
     assert first_unsolved_reason(np.array([1e-6, 1e-5]), [0, 3], ["", ""]) == ""
 
 
-def test_raised_points_share_one_problem_with_their_own_gauge_state(chain):
-    """The problem at the higher H is built once for the points of a backbone (``resolve_point(...,
-    models=...)``, as the adaptive pass raises them) and takes each point's gauge state: a point that
-    the contacts hold, solved on it after a point whose rigid-body direction is pinned, equals the point
-    solved on a fresh problem to rounding (coarse ring, H = 1 raised to 3)."""
+@pytest.fixture(scope="module")
+def raised(chain):
+    """The coarse ring's backbone at H = 1 on a structure with harmonics up to 3, a slipping point the
+    contacts hold and a point whose rigid-body direction is pinned."""
     cfg, reduced, static, structure, contacts, target_hz = chain
     structure = structure_from_reduced(reduced, 3)
     dnnm = cfg["dnnm"]
@@ -280,12 +279,22 @@ def test_raised_points_share_one_problem_with_their_own_gauge_state(chain):
     held = int(np.flatnonzero((backbone.status == 0) & (backbone.zeta > 1e-6))[0])
     pinned = next(i for i in range(alpha.size) if backbone.pinned[i].shape[1])
     assert not backbone.pinned[held].shape[1]
+    return backbone, held, pinned
+
+
+def test_raised_points_share_one_problem_with_their_own_gauge_state(raised):
+    """The problem at the higher H is built once for the points of a backbone (``resolve_point(...,
+    models=...)``, as the adaptive pass raises them) and each point's solve has its own gauge state: a
+    point that the contacts hold, solved on it after a point whose rigid-body direction is pinned, equals
+    the point solved on a fresh problem to rounding (the fresh one's receptance series are expanded about
+    its own start; coarse ring, H = 1 raised to 3)."""
+    backbone, held, pinned = raised
     fresh, why = resolve_point(backbone, held, 3)
     assert fresh is not None, why
     models = {}
-    resolve_point(backbone, pinned, 3, models=models)
+    other, why = resolve_point(backbone, pinned, 3, models=models)
     (model,) = models.values()
-    assert model.pinned.shape[1]                    # the state the other point leaves on the problem
+    assert other is not None and other.pinned[0].shape[1], why      # the other point's solve pins
     shared, why = resolve_point(backbone, held, 3, models=models)
     assert shared is not None, why
     assert shared.model is model and len(models) == 1

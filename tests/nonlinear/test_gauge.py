@@ -6,6 +6,8 @@ explicit gauge ``η_Z = η_ref`` replaces that equilibrium, the DC problem stays
 physical output is independent of the gauge value. An unbalanced case (normal load in phase with
 the slip: mean friction force on the free body) is reported with status DRIFT, and so is a free
 ring in the cyclic toy."""
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -24,10 +26,10 @@ def _backbone(normal_coupling=0.0, H=3):
 
 def _resolve(bb, i, eta_ref):
     model = bb.model
-    model.eta_ref = np.atleast_1d(eta_ref).astype(float)
-    problem = EPMCProblem(model, bb.phase_index)
-    z0 = bb.state(i)
-    z0[model.eta_slices[0].start + model.zero_modes] = model.eta_ref
+    gauge = replace(bb.problem(i).gauge, reference=np.atleast_1d(eta_ref).astype(float))
+    problem = EPMCProblem(model, bb.phase_index, gauge=gauge)
+    z0 = bb.unknowns(i)
+    z0[model.eta_slices[0].start + model.zero_modes] = gauge.reference
     res = newton(lambda z, jac: problem.fun(z, np.log(bb.alpha[i]), jac), z0, problem.scale,
                  tol=1e-12, max_iter=30)
     assert res.converged
@@ -37,8 +39,8 @@ def _resolve(bb, i, eta_ref):
 def test_free_body_backbone_is_regular():
     bb = _backbone()
     assert np.all(bb.status == Status.CONVERGED)
-    ev_stick = bb.model.evaluate(bb.state(0)[:-2], bb.omega[0], bb.xi[0])
-    ev_slip = bb.model.evaluate(bb.state(7)[:-2], bb.omega[7], bb.xi[7])
+    ev_stick = bb.model.evaluate(bb.unknowns(0)[:-2], bb.omega[0], bb.xi[0], bb.problem(0).gauge)
+    ev_slip = bb.model.evaluate(bb.unknowns(7)[:-2], bb.omega[7], bb.xi[7], bb.problem(7).gauge)
     assert ev_stick.drift.size == 0                   # held by the stuck contact: no gauge
     assert ev_slip.drift.size == 1                    # memory lost: gauge on the rigid mode
     assert bb.zeta[0] == pytest.approx(0.0, abs=1e-14) and bb.zeta[7] > 1e-3
@@ -105,21 +107,22 @@ def test_pinned_direction_stays_gauged_and_its_jacobian_is_exact():
     y = np.zeros(model.n_core)
     y[:model.n_d] = 1e-5 * rng.standard_normal(model.n_d)          # stuck: both directions held
     y[model.n_d:] = 1e-5 * rng.standard_normal(model.n_core - model.n_d)
-    held = model.evaluate(y, 100.0, 1.0)
+    held = model.evaluate(y, 100.0, 1.0, model.initial_gauge())
     assert held.drift.size == 0
     g = np.array([[0.6], [0.8]])
-    model.eta_ref = np.array([0.1, -0.2])
-    assert model.pin(g) and not model.pin(-2.0 * g)                  # a direction is pinned once
-    ev = model.evaluate(y, 100.0, 1.0)
+    state = model.initial_gauge(np.array([0.1, -0.2]))
+    state, added = state.pin(g)
+    assert added and not state.pin(-2.0 * g)[1]                    # a direction is pinned once
+    ev = model.evaluate(y, 100.0, 1.0, state)
     rows = model.eta_slices[0].start + model.zero_modes
     assert ev.drift.size == 1 and np.allclose(ev.gauge, g)
     h = np.array([[0.8], [-0.6]])                                  # the held complement
-    assert ev.r[rows[1]] == pytest.approx((g.T @ (y[rows] - model.eta_ref)).item(), rel=1e-12)
+    assert ev.r[rows[1]] == pytest.approx((g.T @ (y[rows] - state.reference)).item(), rel=1e-12)
     assert abs(ev.r[rows[0]]) == pytest.approx(abs((h.T @ held.r[rows]).item()), rel=1e-9)
     assert ev.drift[0] == pytest.approx((g.T @ held.r[rows]).item(), rel=1e-9)
-    prob = EPMCProblem(model, phase_index=model.slot_index(1, True, 1))
+    prob = EPMCProblem(model, phase_index=model.slot_index(1, True, 1), gauge=state)
     z = np.r_[y, 100.0, 1.0]
-    _check_problem(lambda x: prob.fun(x, np.log(1e-3))[:2], z, prob.scale(z))
+    _check_problem(lambda x: prob.fun(x, np.log(1e-3)), z, prob.scale(z))
 
 
 def test_lost_hold_is_pinned_after_a_failed_step():
@@ -129,14 +132,15 @@ def test_lost_hold_is_pinned_after_a_failed_step():
     rng = np.random.default_rng(8)
     y = np.zeros(model.n_core)
     y[:model.n_d] = 1e-2 * rng.standard_normal(model.n_d)          # gross slip: hold lost
-    slip = model.evaluate(y, 100.0, 1.0)
-    assert slip.drift.size == 2 and model.seen.shape[1] == 2
-    assert model.pin_seen() and model.pinned.shape[1] == 2
-    assert not model.pin_seen()                                    # nothing new
-    other = _free_ring_model()
-    other.evaluate(y, 100.0, 1.0)
-    other.accept(np.zeros(other.n_core), held := other.evaluate(1e-9 * y, 100.0, 1.0))
-    assert held.drift.size == 0 and other.pinned.shape[1] == 0 and other.seen.shape[1] == 0
+    start = model.initial_gauge()
+    slip = model.evaluate(y, 100.0, 1.0, start)
+    assert slip.drift.size == 2 and slip.state.seen.shape[1] == 2 and start.seen.shape[1] == 0
+    pinned, added = slip.state.pin_seen()
+    assert added and pinned.pinned.shape[1] == 2 and pinned.seen.shape[1] == 0
+    assert not pinned.pin_seen()[1]                                # nothing new
+    held = model.evaluate(1e-9 * y, 100.0, 1.0, slip.state)
+    after = model.accepted(held.state, np.zeros(model.n_core), held)
+    assert held.drift.size == 0 and after.pinned.shape[1] == 0 and after.seen.shape[1] == 0
 
 
 @pytest.mark.parametrize("tilt, gauged", [(0.004, True), (0.05, False)])
@@ -161,6 +165,6 @@ def test_soft_hold_below_one_percent_counts_as_free(tilt, gauged):
         model = CondensedHBM(st, c, 2, 32) if tol is None else CondensedHBM(st, c, 2, 32,
                                                                           gauge_tol=tol)
         assert model.zero_modes.size == 1
-        ev = model.evaluate(y, 150.0, 2.0)
+        ev = model.evaluate(y, 150.0, 2.0, model.initial_gauge())
         assert np.all(np.abs(ev.aft.tangential[0, 0]) <= 0.3 * ev.aft.normal[0] + 1e-12)
         assert (ev.drift.size == 1) == expect

@@ -3,6 +3,7 @@ a kink gives up at its first damped step that needs ``λ <= give_up_damping`` in
 whole budget; a run whose damped steps stay above the floor is untouched by the option."""
 import numpy as np
 
+from ringdamper.nonlinear.jacobian import Evaluation
 from ringdamper.nonlinear.newton import newton
 
 
@@ -10,12 +11,12 @@ def kink_without_root(z, jacobian):
     """``r = |z| + 1`` (no root) with the one-sided Jacobian ``sign(z)`` (+1 at 0): every Newton
     direction points across the kink at 0, where the residual grows again."""
     J = np.diag(np.where(z >= 0, 1.0, -1.0)) if jacobian else None
-    return np.abs(z) + 1.0, J, None, 1, None
+    return Evaluation(np.abs(z) + 1.0, J, None, 1, None)
 
 
 def arctan(z, jacobian):
     """``r = arctan z``: plain Newton diverges from |z| > 1.39, the damped steps converge."""
-    return np.arctan(z), (np.diag(1.0 / (1.0 + z**2)) if jacobian else None), None, 1, None
+    return Evaluation(np.arctan(z), (np.diag(1.0 / (1.0 + z**2)) if jacobian else None), None, 1, None)
 
 
 def unit_scale(z):
@@ -49,7 +50,7 @@ def shelf(z, jacobian):
     49 times the first one's."""
     low = z < 0.5
     r = np.where(low, 0.5 + 0.01 * (z - 0.5), z)
-    return r, (np.diag(np.where(low, 0.01, 1.0)) if jacobian else None), None, 1, None
+    return Evaluation(r, (np.diag(np.where(low, 0.01, 1.0)) if jacobian else None), None, 1, None)
 
 
 def test_a_corrector_whose_newton_correction_grows_between_jacobians_fails():

@@ -9,6 +9,7 @@
 * Off by default: ``newton`` without ``quasi_newton`` takes exactly its chord steps."""
 import numpy as np
 
+from ringdamper.nonlinear.jacobian import Evaluation
 from ringdamper.nonlinear.newton import CHORD, Factorization, QuasiNewtonSteps, newton
 
 RNG = np.random.default_rng(7)
@@ -20,19 +21,19 @@ B = RNG.normal(size=N)
 def system(z, jacobian):
     """``F(z) = A z + 0.3 sin z − b`` and its Jacobian ``A + 0.3 diag(cos z)``."""
     J = A + 0.3 * np.diag(np.cos(z)) if jacobian else None
-    return A @ z + 0.3 * np.sin(z) - B, J, None, N, None
+    return Evaluation(A @ z + 0.3 * np.sin(z) - B, J, None, N, None)
 
 
 def test_corrections_are_those_of_the_explicit_broyden_matrices():
     weights = RNG.uniform(0.5, 2.0, N)
     W = np.diag(weights)
     x = RNG.normal(size=N)
-    J0 = J = system(x + 0.4, True)[1]                             # lagged: taken elsewhere
+    J0 = J = system(x + 0.4, True).J                             # lagged: taken elsewhere
     steps = QuasiNewtonSteps(weights)
-    dx = -np.linalg.solve(J0, system(x, False)[0])               # J₀'s own first step
+    dx = -np.linalg.solve(J0, system(x, False).r)               # J₀'s own first step
     for _ in range(4):
         x_next = x + dx
-        F_next = system(x_next, False)[0]
+        F_next = system(x_next, False).r
         got, _ = steps.correction(-np.linalg.solve(J0, F_next), dx)
         J = J + np.outer(F_next, dx @ W) / (dx @ W @ dx)         # good Broyden, weighted
         want = -np.linalg.solve(J, F_next)
@@ -43,7 +44,7 @@ def test_corrections_are_those_of_the_explicit_broyden_matrices():
 
 def test_quasi_newton_steps_converge_faster_than_chord_steps_on_a_lagged_jacobian():
     z0 = np.zeros(N)
-    lagged = Factorization(system(z0 + 0.8, True)[1], None, N)
+    lagged = Factorization(system(z0 + 0.8, True).J, None, N)
     tol = 1e-12
     chord = newton(system, z0, np.ones_like, tol, 20, factorization=lagged,
                    theta_max=0.9, chord_budget=200)
@@ -53,12 +54,12 @@ def test_quasi_newton_steps_converge_faster_than_chord_steps_on_a_lagged_jacobia
     assert chord.jacobians == quasi.jacobians == 0                # all steps on the lagged LU
     assert quasi.iterations < chord.iterations
     np.testing.assert_allclose(quasi.z, chord.z, rtol=0, atol=2 * tol)
-    assert np.max(np.abs(system(quasi.z, False)[0])) < 1e-10
+    assert np.max(np.abs(system(quasi.z, False).r)) < 1e-10
 
 
 def test_without_the_switch_newton_takes_its_chord_steps():
     z0 = np.zeros(N)
-    lagged = Factorization(system(z0 + 0.8, True)[1], None, N)
+    lagged = Factorization(system(z0 + 0.8, True).J, None, N)
     default = newton(system, z0, np.ones_like, 1e-12, 20, factorization=lagged)
     chord = newton(system, z0, np.ones_like, 1e-12, 20, factorization=lagged,
                    theta_max=CHORD.theta_max, chord_budget=CHORD.chord_budget)

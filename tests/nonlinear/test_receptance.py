@@ -31,13 +31,13 @@ def _direct(w2, Psi, s):
 
 
 def test_series_equals_the_direct_sum_inside_and_beyond_its_reach():
-    """First call at s₀ = 1 + 0.01i: the six modes below FAR²|s₀| = 100 are summed directly, the 54 above
+    """Expanded about s₀ = 1 + 0.01i: the six modes below FAR²|s₀| = 100 are summed directly, the 54 above
     by the series; within 1e-13 of the direct sum (relative to its largest entry) at s₀, around it, at
     the edge of the stored terms' reach and beyond it (where the direct sum takes over)."""
     rng = np.random.default_rng(1)
     w2, Psi = _modes(rng)
-    receptance = Receptance(w2, Psi, Psi.conj().T.copy())
     s0 = 1.0 + 0.01j
+    receptance = Receptance(w2, Psi, Psi.conj().T.copy(), s0)
     for s in (s0, 0.9 + 0.05j, 1.5 * s0, 0.99 * REACH * s0, 5 * REACH * s0, 300.0 + 0.01j):   # 300: past 200
         ref = _direct(w2, Psi, s)
         assert np.max(np.abs(receptance(s) - ref)) <= 1e-13 * np.max(np.abs(ref)), s
@@ -58,7 +58,7 @@ def test_real_modes_at_zero_shift_stay_real():
     rng = np.random.default_rng(2)
     w2, Psi = _modes(rng)
     Psi = Psi.real.copy()
-    G = Receptance(w2, Psi, Psi.T.copy())(0.0)
+    G = Receptance(w2, Psi, Psi.T.copy(), 0.0)(0.0)
     assert np.isrealobj(G)
     np.testing.assert_allclose(G, (Psi / w2) @ Psi.T, rtol=1e-13, atol=1e-13 * np.max(np.abs(G)))
 
@@ -68,13 +68,14 @@ def test_jacobian_with_the_series_equals_the_direct_one():
     100–314 rad/s: all far at h = 0 and 1, two near at h = 2, all near at h = 3) formed with the series
     and with the direct sum agree to 1e-13 of the largest entry."""
     st, c, _ = cyclic_structure(H=3)
-    model = CondensedHBM(st, c, 3, 36)
+    model = CondensedHBM(st, c, 3, 36, expansion=(12.0, 0.3))
     rng = np.random.default_rng(5)
     y = 1e-4 * rng.standard_normal(model.n_core)
-    J = model.evaluate(y, 12.0, 0.3).J.toarray()
+    J = model.evaluate(y, 12.0, 0.3, model.initial_gauge()).J.toarray()
     assert [r.near.size for r in model.receptances] == [0, 0, 2, 7]
-    model.receptances = [None] * len(model.receptances)
-    direct = model.evaluate(y, 12.0, 0.3).J.toarray()
+    plain = CondensedHBM(st, c, 3, 36)                                  # no expansion point: direct sums
+    assert plain.receptances == [None] * 4
+    direct = plain.evaluate(y, 12.0, 0.3, plain.initial_gauge()).J.toarray()
     assert np.max(np.abs(J - direct)) <= 1e-13 * np.max(np.abs(direct))
 
 
@@ -84,7 +85,7 @@ def _damped_direct(w2, c, Psi, u):
 
 def test_damped_series_equals_the_direct_sum_inside_and_beyond_its_reach():
     """Modal damping c_r = 2 ζ_r ω_r with ζ_r from 1e-4 to 0.5 (β_r = 2ζ_r up to the series' limit of 1) and
-    two overdamped modes (β = 3: summed directly whatever their frequency). First call at u₀ = 1: within
+    two overdamped modes (β = 3: summed directly whatever their frequency). Expanded about u₀ = 1: within
     1e-13 of the direct sum (relative to its largest entry) at u₀, around it, at the edge of the stored
     terms' reach and beyond it (where the direct sum takes over)."""
     rng = np.random.default_rng(3)
@@ -92,7 +93,7 @@ def test_damped_series_equals_the_direct_sum_inside_and_beyond_its_reach():
     zeta = np.geomspace(1e-4, 0.5, w2.size)
     zeta[[10, 40]] = 1.5
     c = 2.0 * zeta * np.sqrt(w2)
-    receptance = DampedReceptance(w2, c, Psi, Psi.conj().T.copy())
+    receptance = DampedReceptance(w2, c, Psi, Psi.conj().T.copy(), 1.0)
     for u in (1.0, 0.9, 1.3, 0.99 * REACH, 5 * REACH, -1.2, 3 * FAR):     # 3 FAR: past the far modes' poles
         ref = _damped_direct(w2, c, Psi, u)
         assert np.max(np.abs(receptance(u) - ref)) <= 1e-13 * np.max(np.abs(ref)), u
@@ -122,10 +123,11 @@ def test_forced_jacobian_and_hill_receptance_with_the_damped_series_equal_the_di
     from ringdamper.nonlinear.stability import _rest_receptance
 
     st, c, _ = cyclic_structure(H=3)
-    model = CondensedHBM(st, c, 3, 36, damping=structural_damping(st, 3, 0.02), forced=True, gamma=1.0)
+    damping = structural_damping(st, 3, 0.02)
+    model = CondensedHBM(st, c, 3, 36, damping=damping, forced=True, gamma=1.0, expansion=(12.0, 0.0))
     rng = np.random.default_rng(7)
     y = 1e-4 * rng.standard_normal(model.n_core)
-    J = model.evaluate(y, 12.0, 0.0).J.toarray()
+    J = model.evaluate(y, 12.0, 0.0, model.initial_gauge()).J.toarray()
     assert [type(r).__name__ for r in model.receptances] == ["Receptance"] + ["DampedReceptance"] * 3
     assert [r.near.size for r in model.receptances[1:]] == [0, 2, 7]
     for h in (1, 2, 3):
@@ -136,6 +138,6 @@ def test_forced_jacobian_and_hill_receptance_with_the_damped_series_equal_the_di
         ref = (m.Psi[:, ~keep] / z[~keep]) @ m.Psi[:, ~keep].conj().T
         assert 0 < keep.sum() < keep.size
         assert np.max(np.abs(rest - ref)) <= 1e-13 * np.max(np.abs(ref)), h
-    model.receptances = [None] * len(model.receptances)
-    direct = model.evaluate(y, 12.0, 0.0).J.toarray()
+    plain = CondensedHBM(st, c, 3, 36, damping=damping, forced=True, gamma=1.0)   # direct sums
+    direct = plain.evaluate(y, 12.0, 0.0, plain.initial_gauge()).J.toarray()
     assert np.max(np.abs(J - direct)) <= 1e-13 * np.max(np.abs(direct))

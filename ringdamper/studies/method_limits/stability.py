@@ -12,8 +12,9 @@ import numpy as np
 import xarray as xr
 
 from ringdamper.io import variable
-from ringdamper.nonlinear.continuation import StepControl, arclength
+from ringdamper.nonlinear.continuation import CurveFunctions, StepControl, arclength
 from ringdamper.nonlinear.fourier import Fourier
+from ringdamper.nonlinear.jacobian import Evaluation
 from ringdamper.nonlinear.stability import hill_exponents, is_stable
 
 ZETA, KAPPA, FORCE = 0.01, 1.0, 0.01
@@ -43,13 +44,13 @@ def duffing(H: int, zeta: float = ZETA, kappa: float = KAPPA, force: float = FOR
         x = fo.synth(c)
         r = L @ c + fo.analyse(kappa * x ** 3) - f
         if not jacobian:
-            return r, None, None, n, None
+            return Evaluation(r, None, None, n, None)
         Jc = L + fo.F @ (3 * kappa * x[:, None] ** 2 * fo.E)
         dL = np.zeros((n, n))                      # ∂L/∂ω
         for h in range(1, H + 1):
             s = fo.slots(h)
             dL[s, s] = [[-2 * h * h * omega, 2 * zeta * h], [-2 * zeta * h, -2 * h * h * omega]]
-        return r, np.hstack([Jc, (dL @ c)[:, None]]), None, n, None
+        return Evaluation(r, np.hstack([Jc, (dL @ c)[:, None]]), None, n, None)
 
     return fo, fun, lambda omega: blocks(omega)[1]
 
@@ -61,16 +62,16 @@ def duffing_frf(H: int, omega_start: float = 0.8, omega_end: float = 1.3):
     z0[-1] = omega_start
     z0[1] = FORCE / (1 - omega_start ** 2)                 # linear response, polished by Newton
     for _ in range(30):
-        r, J, *_ = fun(z0)
-        z0[:-1] -= np.linalg.solve(J[:, :-1], r)
+        ev = fun(z0)
+        z0[:-1] -= np.linalg.solve(ev.J[:, :-1], ev.r)
     direction = np.zeros(fo.C + 1)
     direction[-1] = 1.0
-    run = arclength(fun, z0, direction, np.ones(fo.C + 1), StepControl(0.02, 1e-7, 0.05), 1e-11,
-                    20, stop=lambda z: z[-1] >= omega_end, max_points=3000)
+    run = arclength(CurveFunctions(fun, stop=lambda z: z[-1] >= omega_end), z0, direction, np.ones(fo.C + 1),
+                    StepControl(0.02, 1e-7, 0.05, tol=1e-11, max_iter=20, max_points=3000))
     if run.status != 0:
         raise RuntimeError(f"Duffing forced response: {run.reason}")
     z = np.array([p.z for p in run.points])
-    stable = np.array([is_stable(hill_exponents(fun(zi)[1][:, :-1], hill(zi[-1]), zi[-1]), zi[-1])
+    stable = np.array([is_stable(hill_exponents(fun(zi).J[:, :-1], hill(zi[-1]), zi[-1]), zi[-1])
                        for zi in z])
     return z, stable
 

@@ -8,7 +8,8 @@ from ringdamper.fem.model import build_model
 from ringdamper.geometry.sector import build_sector
 from ringdamper.io import check_contract, read_netcdf
 from ringdamper.nonlinear import krylov
-from ringdamper.nonlinear.epmc import epmc, linear_limit, resolve_point, stick_limit
+from ringdamper.nonlinear.epmc import _higher_model, epmc, linear_limit, resolve_point, stick_limit
+from ringdamper.nonlinear.fourier import default_nt
 from ringdamper.nonlinear.stage import (
     contacts_from_static,
     failed_dnnm,
@@ -300,3 +301,47 @@ def test_raised_points_share_one_problem_with_their_own_gauge_state(raised):
     assert shared.model is model and len(models) == 1
     np.testing.assert_allclose([shared.omega[0], shared.xi[0]], [fresh.omega[0], fresh.xi[0]], rtol=1e-12)
     np.testing.assert_allclose(shared.d[0], fresh.d[0], rtol=0, atol=1e-10 * np.max(np.abs(fresh.d[0])))
+
+
+def _arrays(value, prefix="", seen=None) -> dict:
+    """Every array reachable from ``value`` through lists, tuples, dicts and the attributes of the solver's
+    own objects, as ``path -> (dtype, shape, bytes)`` (scalars by value)."""
+    seen = set() if seen is None else seen
+    if isinstance(value, np.ndarray):
+        return {prefix: (value.dtype.str, value.shape, value.tobytes())}
+    if isinstance(value, (list, tuple)):
+        return {k: v for i, item in enumerate(value) for k, v in _arrays(item, f"{prefix}[{i}]", seen).items()}
+    if isinstance(value, dict):
+        return {k: v for key, item in value.items() for k, v in _arrays(item, f"{prefix}.{key}", seen).items()}
+    if type(value).__module__.startswith("ringdamper.nonlinear") and id(value) not in seen:
+        seen.add(id(value))
+        return {k: v for key, item in vars(value).items() for k, v in _arrays(item, f"{prefix}.{key}", seen).items()}
+    return {prefix: repr(value)}
+
+
+def test_a_shared_problem_solves_its_points_alike_in_either_order_and_stays_as_built(raised):
+    """The adaptive pass's sharing: a point the contacts hold and a point whose rigid-body direction is
+    pinned, solved again at H = 3 one after the other on one problem (``resolve_point(..., models=...)``),
+    give the same solutions to the bit in either order (each order on a problem built alike), and the solves
+    leave the problem as it was built: every array of it, its modal data and receptance series, the same
+    bytes (its structure and contacts, inputs, not compared), and setting an attribute raises."""
+    backbone, held, pinned = raised
+    nt = default_nt(3)
+    solved = {}
+    for order in ((held, pinned), (pinned, held)):
+        model = _higher_model(backbone, 3, nt, (backbone.omega[held], backbone.xi[held]))
+        built = _arrays({k: v for k, v in vars(model).items() if k not in ("structure", "contacts")})
+        models = {(3, nt): model}
+        solved[order] = {i: resolve_point(backbone, i, 3, models=models) for i in order}
+        assert _arrays({k: v for k, v in vars(model).items() if k not in ("structure", "contacts")}) == built
+        assert all(b.model is model for b, _ in solved[order].values())
+    with pytest.raises(AttributeError, match="fixed once built"):
+        model.H = 5
+    first, second = solved.values()
+    for i in (held, pinned):
+        (a, why), (b, _) = first[i], second[i]
+        assert a is not None, why
+        for name in ("omega", "xi", "d", "lam", "drift", "iterations"):
+            assert np.array_equal(getattr(a, name), getattr(b, name)), (i, name)
+        assert all(np.array_equal(x, y) for x, y in zip(a.eta, b.eta)) and np.array_equal(a.pinned[0], b.pinned[0])
+    assert first[pinned][0].pinned[0].shape[1] and not first[held][0].pinned[0].shape[1]

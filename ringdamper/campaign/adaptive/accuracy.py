@@ -27,9 +27,9 @@ import numpy as np
 from scipy.spatial import cKDTree
 from scipy.stats import qmc
 
+from ..design_space import N_KAPPA
 from ..exploration import Backbones, backbones
 from ..kriging import OUTPUTS, STATUS_UNFITTED
-from ..sampling import N_KAPPA
 
 DOMAIN_POINTS = 1024  # Sobol' points of the domain average (a power of 2)
 DOMAIN_STREAM = 101  # their random stream, apart from the design's (INITIAL_STREAM) and the rounds' (round + 1)

@@ -20,11 +20,13 @@ samples = read_samples(sm.input.samples)
 records = [yaml.safe_load(open(path)) for path in sm.input.rounds]
 trace = trace_table(records)
 trace.to_csv(sm.output.rounds, index=False, float_format="%.6g")
-write_html_table(trace, sm.output.rounds_html, "Adaptive rounds: leave-one-out errors, predicted optimum, stop",
-                 notes=["loo_*: normalised leave-one-out error of each output (docs/adaptive.md); change_*: "
-                        "largest |delta kappa_i| and relative |delta zeta_max| of the optimum since the last round."])
+write_html_table(trace, sm.output.rounds_html, "Adaptive rounds: estimated validation errors, predicted optimum, stop",
+                 notes=["variance_*, loo_*, voronoi_*: estimates of each output's validation RMSE relative to its "
+                        "spread over the domain; ratio_*: the stop rule's estimate over sampling.adaptive."
+                        "rmse_tolerance (docs/adaptive.md); change_*: largest |delta kappa_i| and relative "
+                        "|delta zeta_max| of the optimum since the last round."])
 plot_design(samples, sm.output.design)
-plot_trace(trace, sampling.get("adaptive", {}).get("loo_tolerance", float("nan")), sm.output.trace)
+plot_trace(trace, sm.output.trace)
 design = sampling.get("design", "paper")
 times = job_times(sm.input.benchmarks, sm.params.cpu_records)
 row = design_row(design, samples, records, pd.read_csv(sm.input.metrics, index_col="output"),
@@ -37,7 +39,7 @@ if times["sampled_jobs"]:
                  "cpu_time, a lower bound (docs/adaptive.md).")
 if records and records[-1]["reason"] == "budget":
     notes.append(f"The budget sampling.adaptive.n_max = {sampling['adaptive']['n_max']} ran out before the stop "
-                 f"rule fired; last worst leave-one-out error {records[-1]['worst_loo']:.3g}.")
+                 f"rule fired; last worst estimated error over its tolerance {records[-1]['worst_ratio']:.3g}.")
 write_html_table(table.T.reset_index().set_axis(["quantity", *table.design], axis=1), sm.output.comparison,
                  "Design comparison on the validation rings",
                  notes=["job_cpu_s, job_wall_s: CPU and wall seconds summed over the chain jobs of every ring and "

@@ -33,9 +33,10 @@ def plot_design(samples, path) -> None:
     plt.close(fig)
 
 
-def plot_trace(trace, loo_tolerance: float, path) -> None:
-    """Per round (x: training rings computed): each output's normalised LOO error with the tolerance,
-    the predicted optimum's kappa and its zeta_max with the +-2 sigma band."""
+def plot_trace(trace, path) -> None:
+    """Per round (x: training rings computed): each output's estimated validation error over its
+    tolerance (the stop rule's accuracy test: <= 1), the predicted optimum's kappa and its zeta_max with
+    the +-2 sigma band."""
     fig, axes = plt.subplots(1, 3, figsize=(13, 4))
     if trace.empty:
         fig.suptitle("fixed design (sampling.design: paper): no rounds", fontsize=10)
@@ -44,9 +45,9 @@ def plot_trace(trace, loo_tolerance: float, path) -> None:
         return
     n = trace.n_computed.to_numpy()
     for name in ("q_res_z", "omega0", "zeta", "gamma"):
-        axes[0].semilogy(n, trace[f"loo_{name}"], "o-", label=symbol(name))
-    axes[0].axhline(loo_tolerance, color="k", ls=":", label="tolerance")
-    axes[0].set(xlabel="training rings computed", ylabel="normalised LOO error")
+        axes[0].plot(n, trace[f"ratio_{name}"], "o-", label=symbol(name))
+    axes[0].axhline(1.0, color="k", ls=":", label="tolerance")
+    axes[0].set(xlabel="training rings computed", ylabel="estimated validation RMSE / tolerance")
     axes[0].legend(fontsize=8)
     for i in (1, 2, 3):
         axes[1].plot(n, trace[f"optimum_kappa{i}"], "o-", label=f"$\\kappa_{i}$")

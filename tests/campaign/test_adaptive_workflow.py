@@ -30,8 +30,8 @@ def _tree(out, small_config, failed):
         ds = (failed_dnnm(small_config, ring["kappa"], "RuntimeError: static solve failed", 3)
               if ring["gid"] in failed else dnnm_dataset(ring["kappa"], alpha))
         write_netcdf(ds, out / "geometry" / ring["gid"] / "dnnm.nc")
-    record = {"round": 1, "n_computed": 10, "n_usable": 10, "excluded": [], "loo": {}, "stop": False,
-              "reason": None, "optimum_changes": [],
+    record = {"round": 1, "n_computed": 10, "n_usable": 10, "excluded": [], "estimates": {}, "ratios": {},
+              "stop": False, "reason": None, "optimum_changes": [],
               "optimum": {"kappa": [0.4, -0.3, 0.2], "zeta_max": 3e-3, "zeta_max_std": 1e-5},
               "chosen": [dict(ring, score=1.0, explore=1.0, exploit=0.0) for ring in ROUND_1]}
     (out / "adaptive" / "round_1.yaml").write_text(yaml.safe_dump(record))
@@ -47,7 +47,7 @@ def test_a_failed_ring_is_excluded_and_named_and_the_loop_goes_on(tmp_path, smal
     record = yaml.safe_load((out / "adaptive" / "round_2.yaml").read_text())
     assert record["excluded"] == ["a01_000"] and record["n_computed"] == 12 and record["n_usable"] == 11
     assert not record["stop"] and len(record["chosen"]) == small_config["sampling"]["adaptive"]["batch"]
-    assert np.isfinite(list(record["loo"].values())).all()
+    assert np.isfinite(list(record["estimates"]["variance"].values())).all()
     assert "a01_000" in (out / "logs" / "adaptive" / "round_2.log").read_text()
 
 

@@ -47,11 +47,19 @@ def reference_kappa() -> np.ndarray:
     return np.array(list(REFERENCE_RINGS.values()), dtype=float)
 
 
+def initial_entropy(sampling: dict) -> list[int]:
+    """The seed of the initial design's LHS points: (``seed``, INITIAL_STREAM), followed by
+    ``adaptive.initial_seed`` unless it is 0 (so that 0 is the default design, and any other value
+    draws another initial design with the same validation rings, which ``seed`` draws)."""
+    extra = sampling["adaptive"]["initial_seed"]
+    return [sampling["seed"], INITIAL_STREAM, *([extra] if extra else [])]
+
+
 def initial_design(sampling: dict, validation: np.ndarray) -> np.ndarray:
     """(n_initial, 3): the reference rings, then maximin LHS points away from them and ``validation``."""
     n_initial = sampling["adaptive"]["n_initial"]
     refs = reference_kappa()
-    rng = np.random.default_rng([sampling["seed"], INITIAL_STREAM])
+    rng = np.random.default_rng(initial_entropy(sampling))
     lhs = maximin_lhs(n_initial - len(refs), np.vstack([refs, validation]), rng, sampling["lhs_candidates"])
     design = np.vstack([refs, lhs])
     check_separation(design, validation, sampling["min_distance"])

@@ -1,5 +1,5 @@
-"""The adaptive design in the report: the trace of the rounds (leave-one-out errors, predicted optimum,
-stop decision) and the row of the design-comparison table (training size, job time, validation
+"""The adaptive design in the report: the trace of the rounds (estimated validation errors, predicted
+optimum, stop decision) and the row of the design-comparison table (training size, job time, validation
 metrics, optimum), beside the ``paper`` design's row when a committed one exists.
 
 The row is the same for either design, so a run of ``sampling.design: paper`` writes the paper row with
@@ -14,19 +14,23 @@ import pandas as pd
 
 from ...logs import read_cpu_seconds
 from ..kriging import OUTPUTS
+from .accuracy import ESTIMATES
 
 METRICS = ("r2", "rmse", "coverage")  # per output, from validation_metrics.csv
 
 
 def trace_table(records: list[dict]) -> pd.DataFrame:
-    """One row per round: rings computed, usable, excluded; each output's normalised LOO error; the
-    predicted optimum (kappa, zeta_max and its std) and its changes; the stop decision; rings chosen."""
+    """One row per round: rings computed, usable, excluded; each output's relative error estimates
+    (:mod:`.accuracy`, ``<estimate>_<output>``) and the rule's estimate over its tolerance
+    (``ratio_<output>``); the predicted optimum (kappa, zeta_max and its std) and its changes; the stop
+    decision; rings chosen."""
     rows = []
     for r in records:
         change = r["optimum_changes"][-1] if r["optimum_changes"] else {"kappa": np.nan, "zeta_max": np.nan}
         rows.append({"round": r["round"], "n_computed": r["n_computed"], "n_usable": r["n_usable"],
                      "excluded": " ".join(r["excluded"]),
-                     **{f"loo_{o}": r["loo"][o] for o in OUTPUTS},
+                     **{f"{e}_{o}": r["estimates"][e][o] for e in ESTIMATES for o in OUTPUTS},
+                     **{f"ratio_{o}": r["ratios"][o] for o in OUTPUTS},
                      **{f"optimum_kappa{i + 1}": k for i, k in enumerate(r["optimum"]["kappa"])},
                      "optimum_zeta_max": r["optimum"]["zeta_max"],
                      "optimum_zeta_max_std": r["optimum"]["zeta_max_std"],

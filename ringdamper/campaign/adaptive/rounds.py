@@ -7,8 +7,8 @@ predicted optimum (best candidate of the round's set, polished by
 not, picks the next batch (:mod:`.acquisition`, :mod:`.batch`). A ring whose chain failed (no usable
 point) is excluded from the fit and named in the record; a round whose new rings all failed raises
 :class:`RoundFailedError` naming them. The record of a round (a dict, written as YAML by the rule) holds
-the chosen rings with their acquisition values, the leave-one-out errors, the optimum and the stop
-decision.
+the chosen rings with their acquisition values, the estimates of the validation error
+(:mod:`.accuracy`), the optimum and the stop decision.
 """
 from __future__ import annotations
 
@@ -21,10 +21,11 @@ import xarray as xr
 from ..dataset import aggregate, kappa, usable_mask
 from ..exploration import backbones, polish, predicted_zeta_max
 from ..sampling import make_samples
+from .accuracy import RULE_ESTIMATE, domain_points, estimates
 from .acquisition import acquisition
 from .batch import select_batch
 from .design import candidates, round_gid, with_rounds
-from .model import RoundModels, fit_surrogate, normalised_loo, training_spread
+from .model import RoundModels, fit_surrogate, training_spread
 from .stopping import decide
 
 log = logging.getLogger(__name__)
@@ -87,15 +88,14 @@ def plan_round(dataset: xr.Dataset, mask: xr.DataArray, history: list[dict], con
     adaptive, q_max = config["sampling"]["adaptive"], config["exploration"]["optimum_max_level"]
     usable = mask.values.any(axis=1)
     models = round_models(dataset, mask, config, workers) if models is None else models
-    loo = normalised_loo(models.kriging)
+    errors = estimates(models, domain_points(config["sampling"]["seed"]))
     points = candidates(config["sampling"], round_, validation)
     optimum = predicted_optimum(models.surrogate, points, q_max)
     n_computed = dataset.sizes["geometry"]
-    decision = decide([r["loo"] for r in history] + [loo], [r["optimum"] for r in history] + [optimum],
-                      n_computed, adaptive)
+    decision = decide(errors[RULE_ESTIMATE], [r["optimum"] for r in history] + [optimum], n_computed, adaptive)
     record = {"round": round_, "n_computed": n_computed, "n_usable": int(usable.sum()),
               "excluded": [str(g) for g in dataset.geometry.values[~usable]],
-              "loo": loo, "optimum": optimum, **decision, "chosen": []}
+              "estimates": errors, "optimum": optimum, **decision, "chosen": []}
     if decision["stop"]:
         log.info("round %d: stop (%s) after %d training rings", round_, decision["reason"], n_computed)
         return record
@@ -106,8 +106,8 @@ def plan_round(dataset: xr.Dataset, mask: xr.DataArray, history: list[dict], con
     record["chosen"] = [{"gid": round_gid(round_, i), "kappa": _floats(points[p]), "score": float(acq["score"][p]),
                          "explore": float(acq["explore"][p]), "exploit": float(acq["exploit"][p])}
                         for i, p in enumerate(picked)]
-    log.info("round %d: %d training rings, worst LOO %.3g, optimum %s zeta_max %.4g; chose %s", round_,
-             n_computed, decision["worst_loo"], optimum["kappa"], optimum["zeta_max"],
+    log.info("round %d: %d training rings, worst error / tolerance %.3g, optimum %s zeta_max %.4g; chose %s",
+             round_, n_computed, decision["worst_ratio"], optimum["kappa"], optimum["zeta_max"],
              [c["gid"] for c in record["chosen"]])
     return record
 

@@ -197,6 +197,14 @@ def _reduction(config: dict) -> dict:
     return run(config)
 
 
+def _mesh_levels(config: dict) -> dict:
+    """The default ring's static and reduction stages, each in its own process, on the 1x and 2x
+    meshes: CPU, wall, peak memory (ringdamper.bench.mesh_levels)."""
+    from ringdamper.bench.mesh_levels import run
+
+    return run(config)
+
+
 def _dnnm(config: dict) -> dict:
     """dNNM CPU time of the default ring (and its profile), of rings at the median cost and of the hard rings
     (ringdamper.bench.dnnm)."""
@@ -231,7 +239,7 @@ BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "geometry_chain": 
               "reduction": _reduction, "dnnm": _dnnm, "coulomb": _coulomb, "library": _library,
               "dynamics_synthetic": _dynamics_synthetic,
               "static_synthetic": _static_synthetic,
-              "mesh_convergence": _mesh_convergence, "surrogate": _surrogate}
+              "mesh_convergence": _mesh_convergence, "mesh_levels": _mesh_levels, "surrogate": _surrogate}
 
 
 def _run_one(name, config, queue):

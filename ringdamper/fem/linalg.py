@@ -1,8 +1,11 @@
 """Sparse direct solves, the lowest modes of the symmetric/Hermitian FE matrices, and the complete
 dense eigen-decomposition of a Hermitian pair restricted to a few rows of the eigenvectors.
 
-SuperLU with the minimum-degree ordering of A^T + A (structurally symmetric matrices): on the
-27-node-brick sector it halves the fill and factorises ~2.5x faster than the default COLAMD.
+:func:`factorize` is the one entry point of every sparse factorisation: SuperLU under a symmetric
+fill-reducing ordering (:mod:`.ordering`; the minimum degree of A^T + A halves the fill of the
+27-node-brick sector against SuperLU's default COLAMD and factorises ~2.5x faster), and for a real
+positive definite matrix the supernodal LDL^T block solves of :mod:`.supernodal` on the same factors
+(docs/investigations/2026-12-01-sparse-solver.md).
 """
 
 from __future__ import annotations
@@ -11,14 +14,28 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 from scipy.linalg import lapack
-from scipy.sparse.linalg import LinearOperator, eigsh, splu
+from scipy.sparse.linalg import LinearOperator, eigsh
+
+from .superlu import SymmetricLU
+from .supernodal import SupernodalLDL
 
 START_SEED = 0  # ARPACK's start vector: seeded, so that a rerun gives the same modes to the bit
 
 
-def factorize(A: sp.spmatrix):
-    """LU factors of a structurally symmetric sparse matrix (``.solve(b)``)."""
-    return splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})
+def factorize(A: sp.spmatrix, definite: bool = False, ordering: str | None = None):
+    """Factors of a structurally symmetric sparse matrix: ``.solve(b)`` = A⁻¹ b, b a vector or an
+    (n, k) block.
+
+    ``definite`` (A symmetric or Hermitian positive definite): every pivot on the diagonal, and for
+    a real A the supernodal LDL^T factors whose block solves run level-3 BLAS
+    (:class:`~.supernodal.SupernodalLDL`, which raises ``numpy.linalg.LinAlgError`` for a matrix
+    that is not definite); otherwise SuperLU's threshold pivoting (any nonsingular A). ``ordering``
+    is one of :data:`.ordering.ORDERINGS`, the measured default (:func:`.ordering.default_ordering`)
+    if None.
+    """
+    if definite and not np.iscomplexobj(A):
+        return SupernodalLDL(A, ordering)
+    return SymmetricLU(A, definite, ordering)
 
 
 def solve(A: sp.spmatrix, b: np.ndarray) -> np.ndarray:

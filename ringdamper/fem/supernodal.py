@@ -1,7 +1,7 @@
 """Sparse LDLᵀ factors of a symmetric positive definite matrix, solved for many right-hand sides at once.
 
-SuperLU (``scipy.sparse.linalg.splu``) with a symmetric ordering and diagonal pivoting
-(``diag_pivot_thresh=0``: no row interchanges, stable for a positive definite matrix) factorises
+SuperLU (:class:`~ringdamper.fem.superlu.SymmetricLU`, ``definite``) with a symmetric fill-reducing
+ordering and diagonal pivoting (no row interchanges, stable for a positive definite matrix) factorises
 
     P A Pᵀ = L U,   U = D Lᵀ (to round-off),   D = diag(U),
 
@@ -15,7 +15,7 @@ rows R,
 and the backward solve Lᵀ x = D⁻¹ y runs the transposed steps in reverse order. With k right-hand
 sides these are level-3 BLAS calls (trsm, gemm) on k columns at once; SuperLU's own solve, as SciPy
 builds it, runs its triangular solves one right-hand side at a time. The same SuperLU object still
-serves single-vector solves (``lu.solve``), e.g. inside a Lanczos iteration.
+serves single-vector solves (``solve(b)`` of a vector is ``lu.solve``), e.g. inside a Lanczos iteration.
 """
 
 from __future__ import annotations
@@ -25,7 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 from scipy.linalg.blas import dgemm, dtrsm
-from scipy.sparse.linalg import splu
+
+from .superlu import SymmetricLU
 
 #: Columns per chunk of the final un-permutation: a chunk-sized buffer instead of a second copy of X.
 UNPERMUTE_COLUMNS = 64
@@ -87,17 +88,15 @@ def _supernodes(L: sp.csc_matrix) -> list[Supernode]:
 class SupernodalLDL:
     """LDLᵀ factors of a real symmetric positive definite sparse matrix; ``solve(B)`` for a block B."""
 
-    def __init__(self, A: sp.spmatrix):
-        A = sp.csc_matrix(A)
-        self.lu = splu(A, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                       options={"SymmetricMode": True})
-        if not np.array_equal(self.lu.perm_r, self.lu.perm_c):
-            raise ValueError("SuperLU interchanged rows: the matrix is not positive definite")
-        self.perm = self.lu.perm_c
-        self.d = self.lu.U.diagonal()
+    def __init__(self, A: sp.spmatrix, ordering: str | None = None):
+        self.lu = SymmetricLU(A, definite=True, ordering=ordering)
+        if not np.array_equal(self.lu.lu.perm_r, self.lu.lu.perm_c):
+            raise np.linalg.LinAlgError("SuperLU interchanged rows: the matrix is not positive definite")
+        self.perm = self.lu.perm
+        self.d = self.lu.lu.U.diagonal()
         if np.any(self.d <= 0):
-            raise ValueError("the matrix is not positive definite (a pivot is <= 0)")
-        self.supernodes = _supernodes(self.lu.L.tocsc())
+            raise np.linalg.LinAlgError("the matrix is not positive definite (a pivot is <= 0)")
+        self.supernodes = _supernodes(self.lu.lu.L.tocsc())
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -105,9 +104,11 @@ class SupernodalLDL:
 
     def solve(self, B) -> np.ndarray:
         """A⁻¹ B for a real (n, k) block B, dense or sparse (a sparse B is scattered straight into the
-        permuted work array: no dense copy of it is made)."""
+        permuted work array: no dense copy of it is made); a vector is SuperLU's single solve."""
         if not sp.issparse(B):
             B = np.asarray(B, dtype=float)
+            if B.shape == (self.shape[0],):
+                return self.lu.solve(B)
         if B.ndim != 2 or B.shape[0] != self.shape[0]:
             raise ValueError(f"B must be ({self.shape[0]}, k), got {B.shape}")
         if sp.issparse(B):

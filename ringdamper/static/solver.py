@@ -59,7 +59,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
+
+from ringdamper.fem.linalg import factorize
 
 CONVERGED = 0
 NOT_CONVERGED = 1
@@ -194,8 +195,7 @@ class _ContactSpace:
         self.Gn, Gt = G[0::3], sp.vstack([G[1::3], G[2::3]]).tocsr()
         A0 = (K + self.Gn.T @ self.Gn.multiply(s[:, None])
               + Gt.T @ Gt.multiply(np.tile(kt, 2)[:, None])).tocsc()
-        self.lu = spla.splu(A0, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                            options={"SymmetricMode": True})
+        self.lu = factorize(A0, definite=True)
         # One solve with a known answer z rides along with the m columns A0⁻¹ Gnᵀ.
         z = np.random.default_rng(0).standard_normal(A0.shape[0])
         X = self.lu.solve(np.column_stack([self.Gn.T.toarray(), A0 @ z, f]))
@@ -475,7 +475,7 @@ def solve_static_contact(K, f, G, g0, kn, kt, *, method="penalty", tol=1e-10,
     s = kn if kn is not None else 100.0 * _default_scale(K, G[0::3])
     try:
         space = _ContactSpace(K, f, G, s, kt)
-    except RuntimeError as err:  # SuperLU: "Factor is exactly singular"
+    except (RuntimeError, np.linalg.LinAlgError) as err:  # "Factor is exactly singular", a pivot <= 0
         return _failure(K, f, G, g0, kt, SINGULAR, f"structure not restrained with every contact "
                         f"closed (factorisation failed: {err})", method)
     if space.singular:

@@ -49,8 +49,8 @@ def test_indefinite_matrix_is_refused():
 
 
 def test_block_shape_is_checked(spd):
-    with pytest.raises(ValueError, match=r"B must be \(1512, k\)"):
-        SupernodalLDL(spd).solve(np.ones(spd.shape[0]))
+    with pytest.raises(ValueError, match=r"B must be \(1512, k\), got \(1513,\)"):
+        SupernodalLDL(spd).solve(np.ones(spd.shape[0] + 1))
 
 
 def test_no_right_hand_side(spd):

@@ -60,7 +60,7 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 
-from ringdamper.fem.linalg import factorize
+from ringdamper.fem.superlu import SymmetricLU
 
 CONVERGED = 0
 NOT_CONVERGED = 1
@@ -195,7 +195,8 @@ class _ContactSpace:
         self.Gn, Gt = G[0::3], sp.vstack([G[1::3], G[2::3]]).tocsr()
         A0 = (K + self.Gn.T @ self.Gn.multiply(s[:, None])
               + Gt.T @ Gt.multiply(np.tile(kt, 2)[:, None])).tocsc()
-        self.lu = factorize(A0, definite=True)
+        # SuperLU's own solves: the supernodal copy of the factors would double the memory held
+        self.lu = SymmetricLU(A0, definite=True)
         # One solve with a known answer z rides along with the m columns A0⁻¹ Gnᵀ.
         z = np.random.default_rng(0).standard_normal(A0.shape[0])
         X = self.lu.solve(np.column_stack([self.Gn.T.toarray(), A0 @ z, f]))

@@ -26,6 +26,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 from scipy.stats import qmc
+from threadpoolctl import threadpool_limits
 
 from ..design_space import N_KAPPA
 from ..exploration import Backbones, backbones
@@ -99,9 +100,12 @@ def loo_rmse(kriging, weights: np.ndarray | None = None, outputs=OUTPUTS) -> dic
 
 def estimates(models, points: np.ndarray, outputs=OUTPUTS) -> dict:
     """estimate -> output -> the RMSE estimate divided by S_o (module docstring), and ``spread`` ->
-    output -> S_o, for the surrogates ``models`` (:class:`.model.RoundModels`) on ``points``."""
-    bb = backbones(models.surrogate, points, outputs)
-    spread = domain_spread(bb, outputs)
-    raw = {"variance": variance_rmse(bb, outputs), "loo": loo_rmse(models.kriging, outputs=outputs),
-           "voronoi": loo_rmse(models.kriging, cell_weights(models.kriging, points), outputs)}
+    output -> S_o, for the surrogates ``models`` (:class:`.model.RoundModels`) on ``points``. On one
+    BLAS thread: the sums over the domain's points do not then depend on the job's threads, so a round's
+    record is the same to the bit on any number of cores."""
+    with threadpool_limits(1):
+        bb = backbones(models.surrogate, points, outputs)
+        spread = domain_spread(bb, outputs)
+        raw = {"variance": variance_rmse(bb, outputs), "loo": loo_rmse(models.kriging, outputs=outputs),
+               "voronoi": loo_rmse(models.kriging, cell_weights(models.kriging, points), outputs)}
     return {"spread": spread, **{k: {o: v[o] / spread[o] for o in outputs} for k, v in raw.items()}}

@@ -26,7 +26,6 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 from scipy.stats import qmc
-from threadpoolctl import threadpool_limits
 
 from ..design_space import N_KAPPA
 from ..exploration import Backbones, backbones
@@ -34,6 +33,8 @@ from ..kriging import OUTPUTS, STATUS_UNFITTED
 
 DOMAIN_POINTS = 1024  # Sobol' points of the domain average (a power of 2)
 DOMAIN_STREAM = 101  # their random stream, apart from the design's (INITIAL_STREAM) and the rounds' (round + 1)
+#: Digits an estimate is recorded and compared with (:func:`estimates`).
+SIGNIFICANT_DIGITS = 10
 ESTIMATES = ("variance", "loo", "voronoi")
 RULE_ESTIMATE = "variance"  # the one the stop rule reads (docs/adaptive.md, *Stopping rule*)
 
@@ -100,12 +101,17 @@ def loo_rmse(kriging, weights: np.ndarray | None = None, outputs=OUTPUTS) -> dic
 
 def estimates(models, points: np.ndarray, outputs=OUTPUTS) -> dict:
     """estimate -> output -> the RMSE estimate divided by S_o (module docstring), and ``spread`` ->
-    output -> S_o, for the surrogates ``models`` (:class:`.model.RoundModels`) on ``points``. On one
-    BLAS thread: the sums over the domain's points do not then depend on the job's threads, so a round's
-    record is the same to the bit on any number of cores."""
-    with threadpool_limits(1):
-        bb = backbones(models.surrogate, points, outputs)
-        spread = domain_spread(bb, outputs)
-        raw = {"variance": variance_rmse(bb, outputs), "loo": loo_rmse(models.kriging, outputs=outputs),
-               "voronoi": loo_rmse(models.kriging, cell_weights(models.kriging, points), outputs)}
-    return {"spread": spread, **{k: {o: v[o] / spread[o] for o in outputs} for k, v in raw.items()}}
+    output -> S_o, for the surrogates ``models`` (:class:`.model.RoundModels`) on ``points``, each to
+    :data:`SIGNIFICANT_DIGITS`: the predictions over the domain's points are summed in parallel
+    (differently on one core and on two, at 1e-14), and an estimate means no more digits than these, so
+    a round's record and its stop decision are the same on any number of cores."""
+    bb = backbones(models.surrogate, points, outputs)
+    spread = domain_spread(bb, outputs)
+    raw = {"variance": variance_rmse(bb, outputs), "loo": loo_rmse(models.kriging, outputs=outputs),
+           "voronoi": loo_rmse(models.kriging, cell_weights(models.kriging, points), outputs)}
+    ratios = {k: {o: _significant(v[o] / spread[o]) for o in outputs} for k, v in raw.items()}
+    return {"spread": {o: _significant(v) for o, v in spread.items()}, **ratios}
+
+
+def _significant(x: float) -> float:
+    return float(f"{x:.{SIGNIFICANT_DIGITS}g}")

@@ -354,17 +354,18 @@ def test_the_sources_are_scanned():
 
 
 @pytest.mark.parametrize(("text", "base", "expected"), [
-    ("`ringdamper/nonlinear/epmc.py`", "", []),
+    ("`ringdamper/nonlinear/harmonic_balance/epmc.py`", "", []),
     ("see ringdamper/nonlinear/epmcc.py.", "", ["path ringdamper/nonlinear/epmcc.py"]),
     ("`workflow/rules/*.smk`", "", []),
     ("`workflow/rules/*.smx`", "", ["path workflow/rules/*.smx"]),
     ("`results/geometry/{gid}/dnnm.nc`, `results/nothing.csv`", "", []),
-    ("`nonlinear/epmc.py:epmc`, `linear_limit`", "", []),
-    ("`nonlinear/epmc.py:epmc`, `old_epmc`", "", ["object nonlinear/epmc.py:old_epmc"]),
+    ("`nonlinear/harmonic_balance/epmc.py:epmc`, `linear_limit`", "", []),
+    ("`nonlinear/harmonic_balance/epmc.py:epmc`, `old_epmc`", "",
+     ["object nonlinear/harmonic_balance/epmc.py:old_epmc"]),
     ("`campaign/kriging/gp.py:GPModel.predict`", "", []),
     ("`campaign/kriging/gp.py:GPModel.forecast`", "", ["object campaign/kriging/gp.py:GPModel.forecast"]),
-    ("(`ringdamper.nonlinear.epmc.epmc`)", "", []),
-    ("ringdamper.nonlinear.epmc.EPMC", "", ["object ringdamper.nonlinear.epmc.EPMC"]),
+    ("(`ringdamper.nonlinear.harmonic_balance.epmc.epmc`)", "", []),
+    ("ringdamper.nonlinear.harmonic_balance.epmc.EPMC", "", ["object ringdamper.nonlinear.harmonic_balance.epmc.EPMC"]),
     ("`fem.linalg.lowest_modes`", "", []),
     ("`fem.linalg.highest_modes`", "", ["name fem.linalg.highest_modes"]),
     ("`static.nc`, `config.yaml`, `contact.friction_coefficient`, ``static.method``", "", []),

@@ -17,9 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ringdamper.nonlinear.elements import CubicSpring, Elements, Jenkins, UnilateralSpring
-from ringdamper.nonlinear.frf import forced_response
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.contact.elements import CubicSpring, Elements, Jenkins, UnilateralSpring
+from ringdamper.nonlinear.harmonic_balance.frf import forced_response
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
 K = np.array([[2.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 2.0]])
 M = np.eye(3)

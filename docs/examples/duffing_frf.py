@@ -14,9 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ringdamper.nonlinear.elements import CubicSpring, Elements
-from ringdamper.nonlinear.frf import forced_response
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.contact.elements import CubicSpring, Elements
+from ringdamper.nonlinear.harmonic_balance.frf import forced_response
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
 M, K, C, K3, F = 1.0, 1.0, 0.02, 0.5, 0.05
 

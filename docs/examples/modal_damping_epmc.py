@@ -16,9 +16,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
 M = np.diag([1.0, 0.5])
 K = np.array([[4.0e4, -1.0e4], [-1.0e4, 1.0e4]])

@@ -17,9 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ringdamper.nonlinear.elements import Elements, TanhFriction
-from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.contact.elements import Elements, TanhFriction
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
 M = np.diag([0.02, 1.0])
 K = np.array([[40.0, -40.0], [-40.0, 640.0]])

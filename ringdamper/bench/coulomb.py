@@ -3,8 +3,8 @@
 The default ring through mesh -> static -> reduced (untimed), its dNNM backbone with the campaign's
 law and fidelity (untimed), then at every converged grid point the contact AFT with the Coulomb law
 and its Jacobian, timed (CPU seconds of this process) with the periodic state as the library computes
-it (:func:`ringdamper.nonlinear.coulomb.coulomb_slider`) and as it was computed before, marched period
-after period for every pair (:func:`ringdamper.nonlinear.coulomb.march`, up to 500 periods; a state
+it (:func:`ringdamper.nonlinear.contact.coulomb.coulomb_slider`) and as it was computed before, marched period
+after period for every pair (:func:`ringdamper.nonlinear.contact.coulomb.march`, up to 500 periods; a state
 it does not settle counts as failed). Also the largest differences between the two where both settle.
 :func:`run` returns the figures; it asserts nothing.
 """
@@ -26,7 +26,7 @@ def _slider_inputs(contacts, fourier, d):
 def run(config: dict) -> dict:
     """Per grid point of the default ring's backbone: CPU ms of both methods and their differences."""
     from ringdamper.bench.dnnm import ring_inputs
-    from ringdamper.nonlinear.coulomb import coulomb_slider, march
+    from ringdamper.nonlinear.contact.coulomb import coulomb_slider, march
     from ringdamper.nonlinear.fourier import Fourier
     from ringdamper.nonlinear.stage import amplitude_grid, contacts_from_static, default_normalisation, solve_backbone
     from ringdamper.studies.hub_calibration import crossing_speed

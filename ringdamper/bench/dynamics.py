@@ -19,11 +19,11 @@ import time
 
 import numpy as np
 
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import epmc, linear_limit
-from ringdamper.nonlinear.frf import forced_response, resonance_peak
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.structure import HarmonicData, Structure
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc, linear_limit
+from ringdamper.nonlinear.harmonic_balance.frf import forced_response, resonance_peak
+from ringdamper.nonlinear.harmonic_balance.structure import HarmonicData, Structure
 
 
 def synthetic_system(npairs: int = 100, n_blisk: int = 300, n_ring: int = 90, H: int = 5,

@@ -20,9 +20,10 @@ beyond a jump. The first crossing is reported with the number of crossings (``ee
 so a non-monotone case is visible in the outputs and the table.
 
 *Forced response.* HBM with arc-length continuation in excitation frequency
-(:func:`ringdamper.nonlinear.frf.forced_response`), same reduced model, contact element, H, Nt and structural
-damping as the dNNM, over ``band × ω_E-EBM``; the peak of the blade-tip Z time signal along the
-branch (:func:`ringdamper.nonlinear.frf.resonance_peak`, the same measure as the backbone's ``q_res_z``).
+(:func:`ringdamper.nonlinear.harmonic_balance.frf.forced_response`), same reduced model, contact element,
+H, Nt and structural damping as the dNNM, over ``band × ω_E-EBM``; the peak of the blade-tip Z time signal along the
+branch (:func:`ringdamper.nonlinear.harmonic_balance.frf.resonance_peak`, the same measure as the
+backbone's ``q_res_z``).
 """
 from __future__ import annotations
 
@@ -35,7 +36,7 @@ from scipy.interpolate import PchipInterpolator
 from scipy.optimize import brentq
 
 from ringdamper.io import variable
-from ringdamper.nonlinear.frf import forced_response, resonance_peak
+from ringdamper.nonlinear.harmonic_balance.frf import forced_response, resonance_peak
 from ringdamper.nonlinear.normalisation import normalised_frequency
 from ringdamper.status import usable_status
 

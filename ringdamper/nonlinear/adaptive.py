@@ -3,11 +3,11 @@
 The continuation runs at the base truncation H₀ over the whole amplitude grid. Then, point by
 point, a usable grid point is solved again at H + 2 (:func:`_raise`) while
 
-* its truncation indicator ε_H exceeds :data:`ringdamper.nonlinear.truncation.THRESHOLD`, or
+* its truncation indicator ε_H exceeds :data:`ringdamper.nonlinear.indicators.truncation.THRESHOLD`, or
 * the point is *watched* and has not yet been seen to converge in H: at H₀, or where the largest
   relative change of ω, ζ, γ and |q_res,z| from the previous truncation exceeds
   :data:`CHANGE_TOLERANCE`. Watched are the points where preloaded pairs lift off during the period
-  (``lifting_pairs > 0``, :mod:`ringdamper.nonlinear.separation`) and the slip onset: the first
+  (``lifting_pairs > 0``, :mod:`ringdamper.nonlinear.indicators.separation`) and the slip onset: the first
   slipping point (ζ > :data:`SLIP_ZETA`) above a stuck one (preloaded pairs hold all period long and
   none slips), and each next slipping point while the one below moved by more than the tolerance
   from H₀ to H₀ + 2,
@@ -28,12 +28,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ringdamper.nonlinear.conditioning import backbone_conditions
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import Backbone, continue_point, resolve_point
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.separation import separation_indicators
-from ringdamper.nonlinear.truncation import THRESHOLD, highest_harmonic_fraction
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+from ringdamper.nonlinear.harmonic_balance.epmc import Backbone, continue_point, resolve_point
+from ringdamper.nonlinear.indicators.conditioning import backbone_conditions
+from ringdamper.nonlinear.indicators.separation import separation_indicators
+from ringdamper.nonlinear.indicators.truncation import THRESHOLD, highest_harmonic_fraction
 from ringdamper.status import usable_status
 
 log = logging.getLogger(__name__)
@@ -72,7 +72,7 @@ class AdaptiveResult:
 def backbone_outputs(backbone: Backbone, contacts: FrictionContacts, zeta_s: float) -> dict:
     """The :data:`OUTPUTS` of every point of ``backbone``: its E-EBM, drift, truncation and
     separation indicators, the condition number of its Newton Jacobian
-    (:func:`ringdamper.nonlinear.conditioning.backbone_conditions`) and status."""
+    (:func:`ringdamper.nonlinear.indicators.conditioning.backbone_conditions`) and status."""
     res = eebm(backbone, zeta_s=zeta_s)
     n_min, lifting = separation_indicators(backbone, contacts, usable_status(res.status))
     return {"omega": res.omega, "frequency": res.frequency, "zeta": res.zeta, "gamma": res.gamma,
@@ -121,7 +121,7 @@ def _raise(current: Backbone, j: int, H: int, nt: int, tol: float, below: dict,
     continuation at ``H`` from the point below. Where many pairs lift off, the zero-padded start can
     be too far for Newton; the continuation is the robust and slow way (on the default ring 8–64 s
     against 0.5–4 s for Newton). ``models``: the problems at higher H built so far, shared by the
-    points (:func:`ringdamper.nonlinear.epmc.resolve_point`)."""
+    points (:func:`ringdamper.nonlinear.harmonic_balance.epmc.resolve_point`)."""
     higher, why = resolve_point(current, j, H, nt, tol, RAISE_MAX_ITER, models=models)
     if higher is not None or H not in below:
         return higher, why
@@ -142,7 +142,7 @@ def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, 
     """Every point of ``backbone`` at the truncation the rule of the module doc picks (H₀ = the
     backbone's, steps of 2 up to ``H_max``; the structure must hold harmonics up to ``H_max``;
     ``max_arc_points``: arc-length points a continuation at the higher H may take past a fold, as in
-    :func:`ringdamper.nonlinear.epmc.epmc`)."""
+    :func:`ringdamper.nonlinear.harmonic_balance.epmc.epmc`)."""
     H0, nt0 = backbone.H, backbone.nt
     if H_max > backbone.model.structure.H_max:
         raise ValueError(f"H_max = {H_max} exceeds the {backbone.model.structure.H_max} harmonics of the "

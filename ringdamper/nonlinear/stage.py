@@ -4,7 +4,8 @@ The reduced model is read in its own modal coordinates: per harmonic h, mass-nor
 eigenvalues w_r^2, their relative contact coordinates B phi_r and their response (blade-tip Z) value
 phi_r,tip. In these coordinates M_h = I, K_h = diag(w_r^2), B_h = [B phi_r], the response row is
 [phi_r,tip] and the harmonic-1 forcing (unit Z force at the tip) is its conjugate: an exact
-representation of the reduced model, so the condensation of ``nonlinear.condensed`` sums over all of it.
+representation of the reduced model, so the condensation of
+``nonlinear.harmonic_balance.condensed`` sums over all of it.
 """
 
 from __future__ import annotations
@@ -17,14 +18,14 @@ import xarray as xr
 
 from ringdamper.io import declared_dataset, nan_values, variable
 from ringdamper.nonlinear.adaptive import adapt_harmonics
-from ringdamper.nonlinear.conditioning import ILL_CONDITIONED
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.friction import FrictionContacts
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.structure import HarmonicData, Structure
+from ringdamper.nonlinear.indicators.conditioning import ILL_CONDITIONED
+from ringdamper.nonlinear.indicators.separation import warn_separation
+from ringdamper.nonlinear.indicators.truncation import warn_truncation
 from ringdamper.nonlinear.normalisation import normalised_frequency
-from ringdamper.nonlinear.separation import warn_separation
-from ringdamper.nonlinear.structure import HarmonicData, Structure
-from ringdamper.nonlinear.truncation import warn_truncation
 from ringdamper.status import CHAIN_FAILED, Status
 
 log = logging.getLogger(__name__)

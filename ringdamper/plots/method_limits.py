@@ -6,8 +6,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
-from ..nonlinear.eebm import ZETA_LIMIT
-from ..nonlinear.truncation import THRESHOLD
+from ..nonlinear.harmonic_balance.eebm import ZETA_LIMIT
+from ..nonlinear.indicators.truncation import THRESHOLD
 from .optimum import draw_branch
 
 MARKERS = {"structural": "s", "friction_1dof": "o", "friction_2dof": "^", "preload": "o", "gap": "^"}

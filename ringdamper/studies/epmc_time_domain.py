@@ -2,16 +2,16 @@
 (docs/investigations/epmc_time_domain.md).
 
 For a structure with Jenkins contacts, the backbone of the first stuck mode is traced by the HBM
-at several harmonic truncations H (:func:`ringdamper.nonlinear.epmc.epmc`) and, at every
+at several harmonic truncations H (:func:`ringdamper.nonlinear.harmonic_balance.epmc.epmc`) and, at every
 ``shoot_every``-th amplitude, the periodic orbit of the EPMC equation is found again in the time
-domain by shooting from the highest-H solution (:mod:`ringdamper.nonlinear.shooting`) at two step
+domain by shooting from the highest-H solution (:mod:`ringdamper.nonlinear.time_domain.shooting`) at two step
 counts (Δt convergence). The table also holds the one-period return error of the HBM state with
 its own ω and ξ and with the stuck ω or ξ = 0 (a measure that tells a periodic orbit from a
 near miss), and the mode content that explains a rise: the share of the fundamental's mass norm
 ``|φ_kᵀ M Q_1|²/α²`` in each mode ``φ_k`` of the structure *without* the contact springs (the
 free system) and the fraction of the period each element slips.
 
-The study's six analyses on the Jenkins chain family (:mod:`ringdamper.nonlinear.jenkins_chains`),
+The study's six analyses on the Jenkins chain family (:mod:`ringdamper.studies.jenkins_chains`),
 one table each: :func:`rise_scan`, :func:`worst_comparisons`, :func:`spurious_returns`,
 :func:`viscous_analogue`, :func:`step_study` and :func:`issue_chain_check`.
 """
@@ -24,13 +24,13 @@ import numpy as np
 import pandas as pd
 import scipy.linalg as sla
 
-from ringdamper.nonlinear.epmc import Backbone, epmc, linear_limit
+from ringdamper.nonlinear.contact.friction import FrictionContacts, contact_aft
 from ringdamper.nonlinear.fourier import Fourier
-from ringdamper.nonlinear.friction import FrictionContacts, contact_aft
-from ringdamper.nonlinear.jenkins_chains import ISSUE_GRID, OPTIONS, SEEDS, chain_grid, issue_chain, jenkins_chain
-from ringdamper.nonlinear.shooting import hbm_state, phase_row, return_error, shoot
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.harmonic_balance.epmc import Backbone, epmc, linear_limit
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
+from ringdamper.nonlinear.time_domain.shooting import hbm_state, phase_row, return_error, shoot
 from ringdamper.status import Status
+from ringdamper.studies.jenkins_chains import ISSUE_GRID, OPTIONS, SEEDS, chain_grid, issue_chain, jenkins_chain
 
 LOG = logging.getLogger(__name__)
 
@@ -228,7 +228,7 @@ def step_study() -> pd.DataFrame:
 
 
 def issue_chain_check() -> pd.DataFrame:
-    """The folding chain (:func:`~ringdamper.nonlinear.jenkins_chains.issue_chain`, ζ up to 0.41) on
+    """The folding chain (:func:`~ringdamper.studies.jenkins_chains.issue_chain`, ζ up to 0.41) on
     ``ISSUE_GRID``: :func:`compare` at H = 1 and 15 with shooting at every amplitude, and the return
     error of its H = 1 backbone (column ``return_h1``)."""
     st, c = issue_chain()

@@ -4,7 +4,7 @@ On the default ring γ and ζ jump between the last two grid amplitudes (α = 2.
 The study tells a physical change of the contact state from a numerical artefact: it traces the
 default ring's backbone twice, at the campaign's harmonics on the campaign grid and at more
 harmonics on a fine grid over the top of the range, with the separation indicators every dnnm.nc
-carries (:mod:`ringdamper.nonlinear.separation`): n_min(α), the smallest unclipped normal force over
+carries (:mod:`ringdamper.nonlinear.indicators.separation`): n_min(α), the smallest unclipped normal force over
 the period relative to its preload (1 stuck, crossing 0 where the first pair lifts off), and the
 number of lifting pairs. A rise that starts where n_min crosses
 0, and that a finer grid and more harmonics follow smoothly, is the onset of separation; a rise
@@ -16,7 +16,7 @@ import numpy as np
 import xarray as xr
 
 from ringdamper.io import declared_dataset, variable
-from ringdamper.nonlinear.separation import separation_indicators
+from ringdamper.nonlinear.indicators.separation import separation_indicators
 from ringdamper.nonlinear.stage import DNNM_VARIABLES, STATUS_MEANING, amplitude_grid, solve_backbone
 from ringdamper.status import usable_status
 

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from ringdamper.campaign.forced_check import EEBMBackbone, forced_curve, forcing_levels, table3
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import epmc, linear_limit
+from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc, linear_limit
 from tests.nonlinear.systems import cyclic_structure, one_dof
 
 M, KT, MU, N = 2.0, 50.0, 0.3, 10.0
@@ -115,7 +115,7 @@ def test_forced_response_pins_lost_rigid_body_holds(monkeypatch):
     """The forced response hands its solve's ``on_failure`` (pin the holds lost, ``GaugeState.pin_seen``)
     to the continuation as its failure hook, as the EPMC does (without it the forced responses of rings
     whose last stuck pairs release the ring stall or run away; measured on the campaign's optimum ring)."""
-    import ringdamper.nonlinear.frf as frf
+    import ringdamper.nonlinear.harmonic_balance.frf as frf
 
     hooks = []
 

@@ -1,8 +1,8 @@
 """Small test structures for the nonlinear dynamics core (plain functions, no fixtures)."""
 import numpy as np
 
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.structure import HarmonicData, Structure
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.structure import HarmonicData, Structure
 
 
 def one_dof(H=1, m=2.0, k=100.0, kt=50.0, mu=0.3, N=10.0, kn=1e3, zero_tol=1e-9):

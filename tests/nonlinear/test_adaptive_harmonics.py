@@ -6,7 +6,7 @@ import pytest
 from ringdamper.campaign.forced_check import EEBMBackbone
 from ringdamper.config import ConfigError, load_config, validate_config
 from ringdamper.nonlinear.adaptive import OUTPUTS, adapt_harmonics, backbone_outputs
-from ringdamper.nonlinear.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
 from ringdamper.studies.method_limits.harmonics import FAMILIES, ZETA_S, backbone, separating_oscillator
 
 ALPHA = np.geomspace(2e-3, 0.3, 40)          # the study's grid
@@ -96,7 +96,7 @@ def test_higher_h_continuation_takes_the_arc_budget_given(gap, monkeypatch):
     point below; that continuation gets the arc-length budget passed in (the stage's ``ARC_POINTS``),
     not the driver's default, and solves the point."""
     import ringdamper.nonlinear.adaptive as adaptive_module
-    import ringdamper.nonlinear.epmc as epmc_module
+    import ringdamper.nonlinear.harmonic_balance.epmc as epmc_module
 
     ref, base, contacts, _ = gap
     resolve, arc = adaptive_module.resolve_point, epmc_module.natural_then_arclength

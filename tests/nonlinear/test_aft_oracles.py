@@ -7,8 +7,8 @@ and the Nt used for the 1e-6 check is the smallest power of two that meets it.
 import numpy as np
 import pytest
 
+from ringdamper.nonlinear.contact.friction import FrictionContacts, contact_aft, dissipated_energy
 from ringdamper.nonlinear.fourier import Fourier
-from ringdamper.nonlinear.friction import FrictionContacts, contact_aft, dissipated_energy
 
 KT, MU, N0, KN = 2.0e4, 0.3, 50.0, 1.0e5
 A_S = MU * N0 / KT

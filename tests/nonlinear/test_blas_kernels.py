@@ -114,7 +114,7 @@ def test_two_blas_kernels_give_the_same_dnnm(runs, kernels):
     """Equal statuses and outputs within 1e-6 (ill-conditioned points excepted) under the two kernels,
     on rings that cover the stuck shortcut, slipping, lift-off and the gauge's status 3; the outputs are
     not bitwise equal (the kernels did compute differently: measured 1e-16 to 1e-12 apart)."""
-    from ringdamper.nonlinear.conditioning import ILL_CONDITIONED
+    from ringdamper.nonlinear.indicators.conditioning import ILL_CONDITIONED
 
     first, second = (runs[k] for k in kernels)
     bitwise = []

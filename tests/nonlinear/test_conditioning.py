@@ -1,4 +1,4 @@
-"""Condition number of the Newton Jacobian at the converged points (ringdamper.nonlinear.conditioning):
+"""Condition number of the Newton Jacobian at the converged points (ringdamper.nonlinear.indicators.conditioning):
 the equilibrated 1-norm estimate against numpy's exact value, its invariance to the scalings the
 equilibration removes, the equilibrated LU's solves, and on the coarse ring's backbone the stuck points'
 shared value and the estimates the continuation keeps."""
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.linalg import LinAlgWarning
 
-from ringdamper.nonlinear.conditioning import (
+from ringdamper.nonlinear.indicators.conditioning import (
     ILL_CONDITIONED,
     SIGNIFICANT_DIGITS,
     backbone_conditions,
@@ -14,7 +14,7 @@ from ringdamper.nonlinear.conditioning import (
     point_condition,
     reported,
 )
-from ringdamper.nonlinear.newton import Factorization
+from ringdamper.nonlinear.solvers.newton import Factorization
 from ringdamper.nonlinear.stage import amplitude_grid, solve_backbone
 from ringdamper.status import usable_status
 

@@ -6,9 +6,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.epmc import epmc, linear_limit
-from ringdamper.nonlinear.frf import forced_response
-from ringdamper.nonlinear.jacobian import Evaluation
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc, linear_limit
+from ringdamper.nonlinear.harmonic_balance.frf import forced_response
+from ringdamper.nonlinear.solvers.jacobian import Evaluation
 from ringdamper.status import Status
 
 from .systems import multi_dof, two_dof
@@ -54,7 +54,7 @@ def test_branch_point_stops_with_status():
     that neither natural continuation in α nor the arc-length fallback crosses: the run stops
     there with statuses."""
     st, c = multi_dof(H=3)
-    from ringdamper.nonlinear.friction import FrictionContacts
+    from ringdamper.nonlinear.contact.friction import FrictionContacts
     c = FrictionContacts(kn=c.kn, kt=np.array([1e5, 8e4]), mu=0.3, N0=c.N0, gap=c.gap)
     bb = epmc(st, c, np.logspace(-4, -1, 25), H=3, nt=64, mode=0)
     failed = np.flatnonzero(bb.status != Status.CONVERGED)
@@ -74,7 +74,7 @@ def test_backbone_does_not_depend_on_the_continuation_path():
     """Every evaluation marches the sliders from the static state, so a grid point is the same
     solution whatever steps led to it. Two step controls (23 and 234 accepted points) agree to
     the solver tolerance at every grid point, through stick, microslip and gross slip."""
-    from ringdamper.nonlinear.continuation import StepControl
+    from ringdamper.nonlinear.solvers.continuation import StepControl
 
     st, c = multi_dof(H=3)
     _, phi = st.stuck_modes(c.stuck_stiffness().ravel())
@@ -94,7 +94,7 @@ def test_points_between_grid_values_converged_loosely_leave_the_grid_points_unch
     corrector stopped at 1e-5 (and at 1e-3 of the step) instead of the run's 1e-11, every grid point
     is the same solution to the solver tolerance, through stick, microslip and gross slip; a grid
     point itself is always converged to the run's tolerance."""
-    from ringdamper.nonlinear.continuation import StepControl
+    from ringdamper.nonlinear.solvers.continuation import StepControl
 
     tight = StepControl(initial=0.05, minimum=1e-5, maximum=0.1)
     loose = StepControl(initial=0.05, minimum=1e-5, maximum=0.1, between=1e-5)
@@ -156,7 +156,7 @@ def test_jump_test_can_leave_out_unknowns_that_move_freely():
     """``r = [z0 − s, z1 − 10·[s > 0.3]]``: z0 follows s smoothly, z1 (standing for the mean
     position of a ring that lets go) jumps at s = 0.3. The jump test stops natural continuation
     there, unless ``jump_mask`` leaves z1 out; with the mask every grid value is reached."""
-    from ringdamper.nonlinear.continuation import ParameterFunctions, StepControl, natural
+    from ringdamper.nonlinear.solvers.continuation import ParameterFunctions, StepControl, natural
 
     def fun(z, s, jac):
         r = np.array([z[0] - s, z[1] - 10.0 * (s > 0.3)])
@@ -182,7 +182,7 @@ def test_freely_moving_unknowns_do_not_set_the_arc_length(monkeypatch):
     ``FREE_WEIGHT`` in the arc length: the fold is followed to the same grid values on the branch
     beyond it in well under half the points that full weight takes (where ``m``'s travel, about
     400 scaled units at steps of at most 0.5, sets the steps)."""
-    import ringdamper.nonlinear.continuation as continuation
+    import ringdamper.nonlinear.solvers.continuation as continuation
 
     def fun(z, s, jac):
         y, m = z
@@ -218,7 +218,7 @@ def test_arc_length_stops_where_the_branch_turns_back_below_the_floor():
     s ≈ −0.385 before the second fold takes it up again. With a floor above that (−0.2) the
     arc-length part stops at the first point below it and says so; with a floor below it (−0.5) the S
     is followed and every grid value reached, on the same points as without a floor."""
-    import ringdamper.nonlinear.continuation as continuation
+    import ringdamper.nonlinear.solvers.continuation as continuation
 
     def fun(z, s, jac):
         y = z[0]

@@ -1,5 +1,5 @@
 """Randomised family for the continuation drivers (``natural_then_arclength`` with its
-``arclength`` part): 200 seeded spring–mass chains with Jenkins elements (``ringdamper.nonlinear.jenkins_chains``:
+``arclength`` part): 200 seeded spring–mass chains with Jenkins elements (``ringdamper.studies.jenkins_chains``:
 1–5 masses, 1–3 elements, strong, non-proportional friction whose EPMC backbones fold in α, often
 twice, and turn at stick–slip corners). Every backbone traced with the default steps must be the
 one traced with tiny steps (maximum step 0.05 instead of 0.5, nominal tangent turn 0.05 instead
@@ -14,12 +14,12 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear import epmc as epmc_module
-from ringdamper.nonlinear import newton
-from ringdamper.nonlinear.continuation import StepControl
-from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.jenkins_chains import ISSUE_GRID, OPTIONS, SEEDS, chain_grid, issue_chain, jenkins_chain
+from ringdamper.nonlinear.harmonic_balance import epmc as epmc_module
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.nonlinear.solvers import newton
+from ringdamper.nonlinear.solvers.continuation import StepControl
 from ringdamper.status import Status
+from ringdamper.studies.jenkins_chains import ISSUE_GRID, OPTIONS, SEEDS, chain_grid, issue_chain, jenkins_chain
 
 TINY = StepControl(initial=0.05, minimum=1e-4, maximum=0.05, turn=0.05)
 
@@ -100,8 +100,8 @@ def test_arclength_refuses_a_parallel_branch_at_every_step_size():
     them. A corrector past s = 0.3 lands on the other one, with both end tangents parallel to the
     chord's direction of travel only in s: the chord–tangent test rejects it at every step down to
     the minimum, and the run stops there with a status instead of switching."""
-    from ringdamper.nonlinear.continuation import CurveFunctions, arclength
-    from ringdamper.nonlinear.jacobian import Evaluation
+    from ringdamper.nonlinear.solvers.continuation import CurveFunctions, arclength
+    from ringdamper.nonlinear.solvers.jacobian import Evaluation
 
     def fun(x, jac):
         r = np.array([x[0] - 10.0 * (x[1] > 0.3)])

@@ -1,4 +1,4 @@
-"""The isotropic Coulomb slider's periodic state (``ringdamper.nonlinear.coulomb``).
+"""The isotropic Coulomb slider's periodic state (``ringdamper.nonlinear.contact.coulomb``).
 
 * The linear cyclic recurrence ``x_k = A_k x_{k−1} + b_k`` (periodic) solved by the two-level scan is
   that recurrence, to 1e-12 of ``max|x|``, whatever the number of samples (blocks of any size).
@@ -19,7 +19,7 @@
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.coulomb import _Dual, _Segment, coulomb_slider, cyclic_affine, march, tractrix_step
+from ringdamper.nonlinear.contact.coulomb import _Dual, _Segment, coulomb_slider, cyclic_affine, march, tractrix_step
 from ringdamper.nonlinear.fourier import Fourier
 
 NPAIRS = 40

@@ -4,10 +4,10 @@ sector j, satisfies the full 360° harmonic balance — with the contact forces 
 recomputed from its own relative displacements — to 1e-10."""
 import numpy as np
 
-from ringdamper.nonlinear.epmc import epmc
+from ringdamper.fem.cyclic import interblade_phase, nodal_diameter
+from ringdamper.nonlinear.contact.friction import contact_aft, dissipated_energy
 from ringdamper.nonlinear.fourier import Fourier, to_complex, to_real
-from ringdamper.nonlinear.friction import contact_aft, dissipated_energy
-from ringdamper.nonlinear.structure import interblade_phase, nodal_diameter
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
 from ringdamper.status import Status
 
 from .systems import assemble_full, cyclic_structure

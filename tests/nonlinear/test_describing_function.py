@@ -6,7 +6,7 @@ The AFT error is O(Nt⁻²) (kinks of the hysteresis between samples); Nt = 2¹�
 """
 import numpy as np
 
-from ringdamper.nonlinear.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
 from ringdamper.status import Status
 
 from .systems import describing_function, one_dof

@@ -7,9 +7,9 @@ import pytest
 from ringdamper.fem.model import build_model
 from ringdamper.geometry.sector import build_sector
 from ringdamper.io import check_contract, read_netcdf
-from ringdamper.nonlinear import krylov
-from ringdamper.nonlinear.epmc import _higher_model, epmc, linear_limit, resolve_point, stick_limit
 from ringdamper.nonlinear.fourier import default_nt
+from ringdamper.nonlinear.harmonic_balance.epmc import _higher_model, epmc, linear_limit, resolve_point, stick_limit
+from ringdamper.nonlinear.solvers import krylov
 from ringdamper.nonlinear.stage import (
     contacts_from_static,
     failed_dnnm,
@@ -227,7 +227,7 @@ def test_quasi_newton_correctors_trace_the_backbone_of_chord_ones(chain, monkeyp
     """The EPMC's correctors with quasi-Newton steps on their factorisation (the default) against
     chord steps: the same statuses and points within Newton's tolerance of one root, as for the
     lagged tangents above."""
-    from ringdamper.nonlinear import epmc as epmc_module
+    from ringdamper.nonlinear.harmonic_balance import epmc as epmc_module
 
     cfg, reduced, static, structure, contacts, target_hz = chain
     w_stuck = target_stuck_frequency(structure, contacts, target_hz)
@@ -253,7 +253,7 @@ def test_where_the_continuation_stopped_is_recorded(chain, monkeypatch):
     """A continuation that cannot reach the top of the grid (one Newton iteration a corrector, steps of at
     least a third of log α's range, so every corrector fails) records its first unsolved amplitude and the
     driver's reason in ``unsolved_reason``."""
-    from ringdamper.nonlinear import epmc as epmc_module
+    from ringdamper.nonlinear.harmonic_balance import epmc as epmc_module
 
     cfg, reduced, static, structure, contacts, target_hz = chain
     w_stuck = target_stuck_frequency(structure, contacts, target_hz)

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.frf import forced_response, resonance_peak
+from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.frf import forced_response, resonance_peak
 from ringdamper.status import Status
 
 from .systems import one_dof

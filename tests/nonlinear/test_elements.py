@@ -1,4 +1,4 @@
-"""Nonlinear elements on a user's structure (``ringdamper.nonlinear.elements``).
+"""Nonlinear elements on a user's structure (``ringdamper.nonlinear.contact.elements``).
 
 Per element, through the AFT on ``u = a cos τ`` (H = 1):
 
@@ -25,12 +25,12 @@ Newton tolerance 1e-12: the two problems have different unknowns, so Newton stop
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.elements import CubicSpring, Elements, Jenkins, TanhFriction, UnilateralSpring
-from ringdamper.nonlinear.epmc import epmc
+from ringdamper.nonlinear.contact.elements import CubicSpring, Elements, Jenkins, TanhFriction, UnilateralSpring
+from ringdamper.nonlinear.contact.friction import FrictionContacts, contact_aft, dissipated_energy
 from ringdamper.nonlinear.fourier import Fourier
-from ringdamper.nonlinear.frf import forced_response
-from ringdamper.nonlinear.friction import FrictionContacts, contact_aft, dissipated_energy
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.frf import forced_response
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 from ringdamper.status import Status
 
 from .systems import one_dof

@@ -5,9 +5,9 @@
 through stick, slip, lift-off of the preloaded pair and closure of the gapped pair (H = 3)."""
 import numpy as np
 
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.friction import contact_aft, dissipated_energy
+from ringdamper.nonlinear.contact.friction import contact_aft, dissipated_energy
+from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
 from ringdamper.status import Status
 
 from .systems import multi_dof

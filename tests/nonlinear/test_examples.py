@@ -30,7 +30,7 @@ import inspect
 import numpy as np
 
 from ringdamper.bench.library import load_example as _example
-from ringdamper.nonlinear.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
 
 EPMC_TOL = inspect.signature(epmc).parameters["tol"].default   # the examples' Newton tolerance
 

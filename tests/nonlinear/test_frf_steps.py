@@ -1,4 +1,4 @@
-"""Step control of the forced responses (:data:`ringdamper.nonlinear.frf.FORCED_STEPS`).
+"""Step control of the forced responses (:data:`ringdamper.nonlinear.harmonic_balance.frf.FORCED_STEPS`).
 
 Oracle: the same forced response traced with small steps (nominal tangent turn 0.1 rad, maximum
 step 0.1). The default steps must give the same refined peak (amplitude and frequency to 1e-6
@@ -8,12 +8,12 @@ of points: a point count is a property of the step control, not a timing.
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.continuation import StepControl
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import epmc, linear_limit
-from ringdamper.nonlinear.frf import forced_response, resonance_peak
-from ringdamper.nonlinear.newton import newton
-from ringdamper.nonlinear.response import response_harmonics
+from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc, linear_limit
+from ringdamper.nonlinear.harmonic_balance.frf import forced_response, resonance_peak
+from ringdamper.nonlinear.harmonic_balance.response import response_harmonics
+from ringdamper.nonlinear.solvers.continuation import StepControl
+from ringdamper.nonlinear.solvers.newton import newton
 from ringdamper.status import Status
 
 from .systems import cyclic_structure

@@ -11,8 +11,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.epmc import EPMCProblem, epmc
-from ringdamper.nonlinear.newton import newton
+from ringdamper.nonlinear.harmonic_balance.epmc import EPMCProblem, epmc
+from ringdamper.nonlinear.solvers.newton import newton
 from ringdamper.status import Status
 
 from .systems import cyclic_structure, free_body
@@ -89,7 +89,7 @@ def test_free_ring_in_cyclic_toy_is_flagged():
 
 
 def _free_ring_model():
-    from ringdamper.nonlinear.condensed import CondensedHBM
+    from ringdamper.nonlinear.harmonic_balance.condensed import CondensedHBM
 
     st, c, _ = cyclic_structure(H=2, ring_support=0.0)
     return CondensedHBM(st, c, 2, 32)
@@ -149,9 +149,9 @@ def test_soft_hold_below_one_percent_counts_as_free(tilt, gauged):
     wedge effect of a tilted contact normal): in gross slip only the normal spring holds it, at
     about ``tilt`` of the stiffness scale. Below ``gauge_tol`` (1 %) that soft hold counts as
     free and the direction is gauged; above it, and with the former 1e-9, it stays held."""
-    from ringdamper.nonlinear.condensed import CondensedHBM
-    from ringdamper.nonlinear.friction import FrictionContacts
-    from ringdamper.nonlinear.structure import Structure
+    from ringdamper.nonlinear.contact.friction import FrictionContacts
+    from ringdamper.nonlinear.harmonic_balance.condensed import CondensedHBM
+    from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
     M = np.diag([1.0, 0.3])
     K = np.array([[4e4, 0.0], [0.0, 0.0]])

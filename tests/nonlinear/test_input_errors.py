@@ -3,9 +3,9 @@ argument, the shape expected and the shape given; parameters given once hold for
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
 from .systems import multi_dof
 

@@ -7,13 +7,13 @@ import zlib
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes, structural_damping
-from ringdamper.nonlinear.epmc import EPMCProblem
-from ringdamper.nonlinear.forced import ForcedProblem
+from ringdamper.nonlinear.contact.friction import FrictionContacts, contact_aft
 from ringdamper.nonlinear.fourier import Fourier
-from ringdamper.nonlinear.friction import FrictionContacts, contact_aft
-from ringdamper.nonlinear.jacobian import bordered, dense, is_operator
-from ringdamper.nonlinear.newton import Factorization
+from ringdamper.nonlinear.harmonic_balance.condensed import CondensedHBM, pole_modes, structural_damping
+from ringdamper.nonlinear.harmonic_balance.epmc import EPMCProblem
+from ringdamper.nonlinear.harmonic_balance.forced import ForcedProblem
+from ringdamper.nonlinear.solvers.jacobian import bordered, dense, is_operator
+from ringdamper.nonlinear.solvers.newton import Factorization
 
 from .systems import cyclic_structure, free_body, multi_dof
 
@@ -180,8 +180,8 @@ CHAIN_DAMPING = {"modal": np.zeros((3, 3)), "coupled": np.diag([2.0, 0.0, 0.0])}
 def _chain_with_every_element(H, dashpots=CHAIN_DAMPING["modal"]):
     """3-DoF chain with a cubic spring, a stop, a Jenkins element and tanh friction (``Elements``),
     damping ``0.01 K + dashpots``."""
-    from ringdamper.nonlinear.elements import CubicSpring, Elements, Jenkins, TanhFriction, UnilateralSpring
-    from ringdamper.nonlinear.structure import Structure
+    from ringdamper.nonlinear.contact.elements import CubicSpring, Elements, Jenkins, TanhFriction, UnilateralSpring
+    from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
     elements = Elements([CubicSpring([1, 0, 0], 2e3), UnilateralSpring([0, 0, 1], 50.0, 0.01),
                          Jenkins([0, 1, -1], 30.0, 0.5), TanhFriction([1, -1, 0], 0.4, 0.05)], 3)

@@ -1,14 +1,14 @@
-"""Solves with a lagged factorisation (:mod:`ringdamper.nonlinear.krylov`): GMRES on the current
+"""Solves with a lagged factorisation (:mod:`ringdamper.nonlinear.solvers.krylov`): GMRES on the current
 Jacobian preconditioned by an earlier LU reaches the direct solution to its tolerance, and falls
 back to factorising the current Jacobian (then exact to round-off) when a large change of the
 Jacobian would need more iterations than allowed; small systems are always factorised."""
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear import krylov
-from ringdamper.nonlinear.jacobian import bordered
-from ringdamper.nonlinear.krylov import LaggedSolver
-from ringdamper.nonlinear.newton import Factorization, linear_solver
+from ringdamper.nonlinear.solvers import krylov
+from ringdamper.nonlinear.solvers.jacobian import bordered
+from ringdamper.nonlinear.solvers.krylov import LaggedSolver
+from ringdamper.nonlinear.solvers.newton import Factorization, linear_solver
 
 
 class Operator:

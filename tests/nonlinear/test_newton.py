@@ -3,8 +3,8 @@ a kink gives up at its first damped step that needs ``λ <= give_up_damping`` in
 whole budget; a run whose damped steps stay above the floor is untouched by the option."""
 import numpy as np
 
-from ringdamper.nonlinear.jacobian import Evaluation
-from ringdamper.nonlinear.newton import newton
+from ringdamper.nonlinear.solvers.jacobian import Evaluation
+from ringdamper.nonlinear.solvers.newton import newton
 
 
 def kink_without_root(z, jacobian):

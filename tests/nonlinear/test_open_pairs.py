@@ -12,9 +12,9 @@ damping (the tangential motion is zero). The AFT error of the kink is O(Nt⁻²)
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 from ringdamper.status import Status
 
 M, K, KN, GAP = 2.0, 100.0, 400.0, 1.0e-3

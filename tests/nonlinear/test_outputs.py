@@ -15,11 +15,11 @@ displacement."""
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.frf import forced_response
-from ringdamper.nonlinear.response import time_peak
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.frf import forced_response
+from ringdamper.nonlinear.harmonic_balance.response import time_peak
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 from ringdamper.status import Status
 
 from .test_structural_damping import FRICTION, OPEN, B, E, K, M, _natural_frequencies, _structure

@@ -1,9 +1,9 @@
-"""The play operator's periodic state (``ringdamper.nonlinear.play``) against a march sample after sample,
+"""The play operator's periodic state (``ringdamper.nonlinear.contact.play``) against a march sample after sample,
 with and without its sources, on random bounds with ties (values on a 0.1 grid, bounds that coincide)."""
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.play import play_operator
+from ringdamper.nonlinear.contact.play import play_operator
 
 
 def _bounds(seed, nt):

@@ -9,8 +9,8 @@
 * Off by default: ``newton`` without ``quasi_newton`` takes exactly its chord steps."""
 import numpy as np
 
-from ringdamper.nonlinear.jacobian import Evaluation
-from ringdamper.nonlinear.newton import CHORD, Factorization, QuasiNewtonSteps, newton
+from ringdamper.nonlinear.solvers.jacobian import Evaluation
+from ringdamper.nonlinear.solvers.newton import CHORD, Factorization, QuasiNewtonSteps, newton
 
 RNG = np.random.default_rng(7)
 N = 6

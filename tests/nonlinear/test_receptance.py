@@ -1,13 +1,14 @@
-"""Receptance of condensed modes (ringdamper.nonlinear.receptance): the far modes' series, undamped and with
-modal damping, against the direct sum inside and beyond its reach, the number of terms, real arithmetic at
-h = 0, and the Jacobians of the cyclic toy (and Hill's condensed receptance) formed with it against those
+"""Receptance of condensed modes (ringdamper.nonlinear.harmonic_balance.receptance): the far modes'
+series, undamped and with modal damping, against the direct sum inside and beyond its reach, the number of terms,
+real arithmetic at h = 0, and the Jacobians of the cyclic toy (and Hill's condensed receptance) formed with it
+against those
 formed by the direct sum."""
 import sys
 
 import numpy as np
 
-from ringdamper.nonlinear.condensed import CondensedHBM
-from ringdamper.nonlinear.receptance import (
+from ringdamper.nonlinear.harmonic_balance.condensed import CondensedHBM
+from ringdamper.nonlinear.harmonic_balance.receptance import (
     FAR,
     REACH,
     TOL,
@@ -117,10 +118,10 @@ def test_forced_jacobian_and_hill_receptance_with_the_damped_series_equal_the_di
     """The cyclic toy with modal damping (ζ_s = 2 %), forced (ξ = 0) at ω = 12 rad/s (its 7 modes a harmonic at
     100–314 rad/s: all far at h = 1, two near at h = 2, all near at h = 3): its Jacobian formed with the
     damped series and with the direct sum agree to 1e-13 of the largest entry, and so does the receptance of
-    the modes Hill's method condenses (:func:`ringdamper.nonlinear.stability._rest_receptance`: the model's,
-    less the modes kept, here those below 165 rad/s) against its direct sum."""
-    from ringdamper.nonlinear.condensed import structural_damping
-    from ringdamper.nonlinear.stability import _rest_receptance
+    the modes Hill's method condenses (:func:`ringdamper.nonlinear.harmonic_balance.stability._rest_receptance`:
+    the model's, less the modes kept, here those below 165 rad/s) against its direct sum."""
+    from ringdamper.nonlinear.harmonic_balance.condensed import structural_damping
+    from ringdamper.nonlinear.harmonic_balance.stability import _rest_receptance
 
     st, c, _ = cyclic_structure(H=3)
     damping = structural_damping(st, 3, 0.02)

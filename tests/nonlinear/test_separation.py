@@ -1,4 +1,4 @@
-"""The contact-separation indicator (``ringdamper.nonlinear.separation``) against closed forms.
+"""The contact-separation indicator (``ringdamper.nonlinear.indicators.separation``) against closed forms.
 
 One mass on a spring, pressed by a preloaded pair (normal spring kn along its motion, friction never
 engaged: μ large). While the pair stays closed the EPMC is the linear mode (ω² = (k + kn)/m) and
@@ -11,10 +11,10 @@ import logging
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.separation import normal_force_ratio, separation_indicators, warn_separation
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
+from ringdamper.nonlinear.indicators.separation import normal_force_ratio, separation_indicators, warn_separation
 
 M, K, KN, N0 = 2.0, 3.0, 5.0, 0.7
 A_OPEN = N0 / KN                                      # normal amplitude at lift-off

@@ -1,4 +1,4 @@
-"""The time-domain EPMC reference (``ringdamper.nonlinear.shooting``) against oracles, and the HBM
+"""The time-domain EPMC reference (``ringdamper.nonlinear.time_domain.shooting``) against oracles, and the HBM
 against it on a chain whose EPMC frequency rises with amplitude.
 
 * Linear oracle: below the first slip the chain is the linear stuck system; shooting from a
@@ -29,10 +29,10 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.epmc import epmc, linear_limit
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.jenkins_chains import chain_grid, jenkins_chain
-from ringdamper.nonlinear.shooting import (
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc, linear_limit
+from ringdamper.nonlinear.indicators.truncation import THRESHOLD, highest_harmonic_fraction
+from ringdamper.nonlinear.time_domain.shooting import (
     JenkinsTimeModel,
     hbm_state,
     march,
@@ -41,8 +41,8 @@ from ringdamper.nonlinear.shooting import (
     shoot,
     shooting_residual,
 )
-from ringdamper.nonlinear.truncation import THRESHOLD, highest_harmonic_fraction
 from ringdamper.status import Status
+from ringdamper.studies.jenkins_chains import chain_grid, jenkins_chain
 
 from .systems import cyclic_structure, describing_function, multi_dof, one_dof
 

@@ -24,10 +24,10 @@ import pytest
 import scipy.linalg as sla
 from scipy.integrate import solve_ivp
 
-from ringdamper.nonlinear.condensed import CondensedHBM, structural_damping
-from ringdamper.nonlinear.elements import Elements, TanhFriction
-from ringdamper.nonlinear.frf import forced_response
-from ringdamper.nonlinear.stability import (
+from ringdamper.nonlinear.contact.elements import Elements, TanhFriction
+from ringdamper.nonlinear.harmonic_balance.condensed import CondensedHBM, structural_damping
+from ringdamper.nonlinear.harmonic_balance.frf import forced_response
+from ringdamper.nonlinear.harmonic_balance.stability import (
     BAND,
     _contact_matrix,
     _modal_blocks,
@@ -35,7 +35,7 @@ from ringdamper.nonlinear.stability import (
     hill_exponents,
     modal_hill_matrices,
 )
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 from ringdamper.studies.method_limits.stability import KAPPA, ZETA, duffing_frf
 
 from .systems import cyclic_structure, multi_dof, one_dof
@@ -197,7 +197,7 @@ def test_tanh_friction_condensed_modes_keep_the_exponents():
 
 def test_through_matrix_by_harmonic_blocks_equals_the_dense_product():
     """``I + K_c G`` of the condensed modes, formed pair by pair on each harmonic's diagonal block of
-    ``G`` (:func:`ringdamper.nonlinear.stability._through_matrix`), equals the sparse ``K_c`` times the
+    ``G`` (:func:`ringdamper.nonlinear.harmonic_balance.stability._through_matrix`), equals the sparse ``K_c`` times the
     dense block-diagonal ``G`` to 1e-14 of its largest entry on the cyclic toy (complex harmonics),
     at a state whose contact Jacobian couples the harmonics (pairs slipping over part of the period)."""
     st, c, _ = cyclic_structure(H=3)

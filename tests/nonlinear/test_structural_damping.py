@@ -16,7 +16,7 @@ Oracles:
   the linear system solves ``det(K − ω²M + iω(C − ξM)) = 0`` (solved here directly; 1e-9 on ω and
   Newton's 1e-8·ω on ξ, measured 3e-10 and 1e-8·ξ with ζ = 0.56 %); the forced response is the
   receptance and its Hill exponents the eigenvalues of ``λ²M + λC + K`` (largest real part to 1e-9).
-* Time domain: shooting (``ringdamper.nonlinear.shooting``) with modal ratios, and with a dashpot,
+* Time domain: shooting (``ringdamper.nonlinear.time_domain.shooting``) with modal ratios, and with a dashpot,
   agrees with the damped EPMC at H = 15 on the friction 2-DoF system (ω within 1e-6, ζ within 1e-6;
   measured 2e-8 and 1e-7 with modal ratios, 2e-8 and 9e-8 with the dashpot).
 """
@@ -24,13 +24,13 @@ import numpy as np
 import pytest
 from scipy.optimize import fsolve
 
-from ringdamper.nonlinear.condensed import CondensedHBM, structural_damping
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import epmc, linear_limit
-from ringdamper.nonlinear.frf import forced_response
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.shooting import hbm_state, phase_row, shoot
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.condensed import CondensedHBM, structural_damping
+from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc, linear_limit
+from ringdamper.nonlinear.harmonic_balance.frf import forced_response
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
+from ringdamper.nonlinear.time_domain.shooting import hbm_state, phase_row, shoot
 from ringdamper.status import Status
 
 M = np.diag([1.0, 0.5])

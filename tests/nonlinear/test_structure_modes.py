@@ -1,11 +1,11 @@
-"""Modes of a structure (:mod:`ringdamper.nonlinear.structure`): a pencil that is diagonal (a structure
+"""Modes of a structure (:mod:`ringdamper.nonlinear.harmonic_balance.structure`): a pencil that is diagonal (a structure
 given in its own modes, as the campaign's reduced.nc) is solved as such, identical to LAPACK's
 answer; any other pencil by LAPACK; the stuck modes are computed once per stiffness."""
 import numpy as np
 import pytest
 import scipy.linalg as sla
 
-from ringdamper.nonlinear.structure import Structure, _mass_normalised_modes
+from ringdamper.nonlinear.harmonic_balance.structure import Structure, _mass_normalised_modes
 
 
 def test_diagonal_pencil_in_ascending_order_is_lapacks_answer_bit_for_bit():

@@ -59,10 +59,10 @@ def test_metrics_peak_refinement_on_a_known_curve():
 
 def _one_dof_backbone(mu, alpha):
     """1-DoF oscillator with one preloaded Jenkins element (docs/design.md §7 oracle system)."""
-    from ringdamper.nonlinear.eebm import eebm
-    from ringdamper.nonlinear.epmc import epmc
-    from ringdamper.nonlinear.friction import FrictionContacts
-    from ringdamper.nonlinear.structure import Structure
+    from ringdamper.nonlinear.contact.friction import FrictionContacts
+    from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+    from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+    from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
     m, k, kt, N = 2.0, 100.0, 50.0, 10.0
     B = np.array([[0.0], [1.0], [0.0]])

@@ -5,8 +5,8 @@ import pandas as pd
 import pytest
 import yaml
 
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
 from ringdamper.studies.fidelity.quantities import relative_errors, richardson, user_quantities
 from ringdamper.studies.fidelity.summary import choose
 from ringdamper.studies.fidelity.surrogate import backbone_dataset, lhs_design

@@ -14,8 +14,8 @@ import logging
 import numpy as np
 import pytest
 
-from ringdamper.nonlinear.eebm import ZETA_LIMIT
-from ringdamper.nonlinear.truncation import THRESHOLD, warn_truncation
+from ringdamper.nonlinear.harmonic_balance.eebm import ZETA_LIMIT
+from ringdamper.nonlinear.indicators.truncation import THRESHOLD, warn_truncation
 from ringdamper.studies.method_limits import eebm_validity as ev
 from ringdamper.studies.method_limits.harmonics import FAMILIES, truncation_study, worst_error
 
@@ -34,7 +34,7 @@ def test_eebm_on_a_linear_oscillator_is_off_by_the_exact_amount(zeta_s):
 
 def test_eebm_with_friction_damping_fails_past_the_limit_and_warns(caplog):
     st, c = ev.jenkins_oscillator(3.0, dofs=2)
-    with caplog.at_level(logging.WARNING, logger="ringdamper.nonlinear.eebm"):
+    with caplog.at_level(logging.WARNING, logger="ringdamper.nonlinear.harmonic_balance.eebm"):
         low, high = ev.compare(st, c, 1e-3, ev.SLIP_AMPLITUDE * np.array([1.8, 6.0]))
     assert low["zeta_total"] < ZETA_LIMIT and abs(low["error"]) < 0.05
     assert high["zeta_total"] > ZETA_LIMIT and abs(high["error"]) > 0.05
@@ -56,7 +56,7 @@ def test_truncation_errors_grow_where_the_contact_separates(gap_family, caplog):
     for H in (2, 3):
         assert np.all(eps.sel(n_harmonics=H).values[closing] > THRESHOLD)
     assert worst.sel(n_harmonics=3).values[closing].max() > 0.01     # flagged, and rightly so
-    with caplog.at_level(logging.WARNING, logger="ringdamper.nonlinear.truncation"):
+    with caplog.at_level(logging.WARNING, logger="ringdamper.nonlinear.indicators.truncation"):
         assert warn_truncation(eps.sel(n_harmonics=2).values, gap_family.amplitude.values)
     assert "more harmonics are needed" in caplog.text
     assert np.all(eps.sel(n_harmonics=5).values < THRESHOLD)

@@ -14,9 +14,9 @@ elements of stiffness ``kt = ratio·k`` and slip limit ``μN = kt·a_s`` (slip a
 
 For every case the E-EBM prediction (first backbone point at the forcing, as the campaign reads it,
 :meth:`ringdamper.campaign.forced_check.EEBMBackbone.at_forcing`) is compared with the peak of the
-forced response traced by arc length around it (:func:`ringdamper.nonlinear.frf.forced_response`,
-:func:`~ringdamper.nonlinear.frf.resonance_peak`), against the total damping ratio ζ_tot of the
-E-EBM point (:mod:`ringdamper.nonlinear.eebm`).
+forced response traced by arc length around it (:func:`ringdamper.nonlinear.harmonic_balance.frf.forced_response`,
+:func:`~ringdamper.nonlinear.harmonic_balance.frf.resonance_peak`), against the total damping ratio ζ_tot of the
+E-EBM point (:mod:`ringdamper.nonlinear.harmonic_balance.eebm`).
 """
 from __future__ import annotations
 
@@ -25,11 +25,11 @@ import xarray as xr
 
 from ringdamper.campaign.forced_check import EEBMBackbone
 from ringdamper.io import variable
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.frf import forced_response, resonance_peak
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.frf import forced_response, resonance_peak
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
 SLIP_AMPLITUDE = 0.01   # a_s [m]
 H, NT = 1, 256

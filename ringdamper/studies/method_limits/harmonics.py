@@ -10,7 +10,7 @@ Along each backbone (dNNM + E-EBM), H = 1, 2, 3, 5 are compared with a converged
 (``REFERENCE_H``): the frequency ω and damping ratio ζ at equal modal amplitude α, and the E-EBM
 resonant amplitude at equal forcing γ (the quantity users read). The separation measure is the
 fraction of the period during which the pair is open in the reference solution; the truncation
-indicator ε_H is :func:`ringdamper.nonlinear.truncation.highest_harmonic_fraction`. Amplitudes at
+indicator ε_H is :func:`ringdamper.nonlinear.indicators.truncation.highest_harmonic_fraction`. Amplitudes at
 equal forcing are read as the campaign reads them (first backbone point at that forcing) on both
 backbones; ζ errors are relative to the largest reference ζ of the family (where the pair sticks
 or stays open ζ vanishes and a pointwise relative error would only measure round-off).
@@ -22,11 +22,11 @@ import xarray as xr
 
 from ringdamper.campaign.forced_check import EEBMBackbone
 from ringdamper.io import variable
-from ringdamper.nonlinear.eebm import eebm
-from ringdamper.nonlinear.epmc import epmc
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.structure import Structure
-from ringdamper.nonlinear.truncation import highest_harmonic_fraction
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.eebm import eebm
+from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
+from ringdamper.nonlinear.indicators.truncation import highest_harmonic_fraction
 
 REFERENCE_H = 11
 HARMONICS = (1, 2, 3, 5)

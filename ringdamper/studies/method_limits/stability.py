@@ -2,8 +2,8 @@
 
 ``ẍ + 2ζẋ + x + κx³ = F cos ωt`` (hardening for κ > 0) in the real slots of
 :class:`ringdamper.nonlinear.fourier.Fourier` (AFT for the cubic term), traced by pseudo-arc-length
-continuation in ω (:func:`ringdamper.nonlinear.continuation.arclength`), every point classified by
-:func:`ringdamper.nonlinear.stability.hill_exponents` (unit mass: Hill's Δ₂ = I). Its forced
+continuation in ω (:func:`ringdamper.nonlinear.solvers.continuation.arclength`), every point classified by
+:func:`ringdamper.nonlinear.harmonic_balance.stability.hill_exponents` (unit mass: Hill's Δ₂ = I). Its forced
 response has two folds; the branch between them is unstable.
 """
 from __future__ import annotations
@@ -12,10 +12,10 @@ import numpy as np
 import xarray as xr
 
 from ringdamper.io import variable
-from ringdamper.nonlinear.continuation import CurveFunctions, StepControl, arclength
 from ringdamper.nonlinear.fourier import Fourier
-from ringdamper.nonlinear.jacobian import Evaluation
-from ringdamper.nonlinear.stability import hill_exponents, is_stable
+from ringdamper.nonlinear.harmonic_balance.stability import hill_exponents, is_stable
+from ringdamper.nonlinear.solvers.continuation import CurveFunctions, StepControl, arclength
+from ringdamper.nonlinear.solvers.jacobian import Evaluation
 
 ZETA, KAPPA, FORCE = 0.01, 1.0, 0.01
 

@@ -6,7 +6,7 @@ structural damping the modal ratio ``zeta_s``. The curve starts from a converged
 solve at ``omega_start`` (seeded with the linearised stuck response) and follows the branch with
 pseudo-arc-length steps until ω passes ``omega_end`` (status 1 if it turns back a whole band below
 ``omega_start`` instead). A rigid-body hold of the ring lost within a failed step is pinned and
-the step retried, as in the EPMC (:meth:`ringdamper.nonlinear.forced.ForcedProblem.on_failure`). The
+the step retried, as in the EPMC (:meth:`ringdamper.nonlinear.harmonic_balance.forced.ForcedProblem.on_failure`). The
 resonance peak is the maximum of the response measure along the branch, refined between the
 neighbours of every sampled maximum near the largest (:func:`resonance_peak`) by a bounded Brent
 search over the arc-length coordinate (each evaluation a converged solution on the hyperplane
@@ -19,14 +19,14 @@ about 2π across the peak, whatever the forcing. The arc length's rule "the tang
 ``turn`` per step" therefore sets the point count (≈ 2π/turn + the corners of stick–slip
 transitions). The forced curves use ``turn = 0.3`` rad (about 21 points round the circle, each
 chord within ``turn/2`` of the arc) with steps up to 0.3 and a growth of 2 on easy steps; every
-step still passes all the trusted-step tests of :mod:`ringdamper.nonlinear.continuation`, and the
+step still passes all the trusted-step tests of :mod:`ringdamper.nonlinear.solvers.continuation`, and the
 peak comes from the refinement, not from the spacing of the points. The tangents, solved by GMRES
 on the corrector's last LU, are accurate to 1e-4 (scaled 2-norm; the continuation's default is 1e-6):
 they only set the predictor, the corrector's hyperplane and the geometry tests, which work at
 0.3–0.6 rad, and a refined peak moves by at most 1e-6 relative with them (measured on Table 3's eight
 curves: 9 % less CPU, the slowest 16.2 → 13.5 s). Every point's local stability
 comes from Hill's method on the full modal harmonic-balance Jacobian
-(:mod:`ringdamper.nonlinear.stability`).
+(:mod:`ringdamper.nonlinear.harmonic_balance.stability`).
 """
 from __future__ import annotations
 
@@ -36,17 +36,17 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ringdamper.nonlinear.condensed import CondensedHBM, pole_modes, structural_damping
-from ringdamper.nonlinear.continuation import StepControl, arclength
-from ringdamper.nonlinear.elements import Elements
-from ringdamper.nonlinear.forced import ForcedProblem
+from ringdamper.nonlinear.contact.elements import Elements
+from ringdamper.nonlinear.contact.friction import FrictionContacts
 from ringdamper.nonlinear.fourier import default_nt
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.jacobian import bordered, dense
-from ringdamper.nonlinear.newton import Factorization, newton
-from ringdamper.nonlinear.response import response_harmonics, time_peak
-from ringdamper.nonlinear.stability import hill_exponents, is_stable, modal_hill_matrices
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.harmonic_balance.condensed import CondensedHBM, pole_modes, structural_damping
+from ringdamper.nonlinear.harmonic_balance.forced import ForcedProblem
+from ringdamper.nonlinear.harmonic_balance.response import response_harmonics, time_peak
+from ringdamper.nonlinear.harmonic_balance.stability import hill_exponents, is_stable, modal_hill_matrices
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
+from ringdamper.nonlinear.solvers.continuation import StepControl, arclength
+from ringdamper.nonlinear.solvers.jacobian import bordered, dense
+from ringdamper.nonlinear.solvers.newton import Factorization, newton
 from ringdamper.status import Status
 
 #: Step control of the forced responses (module docstring): arc length in the scaled metric of
@@ -59,7 +59,7 @@ FORCED_STEPS = StepControl(initial=0.05, minimum=1e-6, maximum=0.3, grow=2.0, tu
 class FRF:
     """Forced-response branch: per point ``omega`` [rad/s], ``q_h1`` (first-harmonic magnitude
     of the response DoF), ``q_peak`` (peak of its time signal) [m] and ``drift`` (relative mean
-    force on a gauged free body, see :mod:`ringdamper.nonlinear.condensed`), ``growth`` (largest
+    force on a gauged free body, see :mod:`ringdamper.nonlinear.harmonic_balance.condensed`), ``growth`` (largest
     real part of the point's Floquet exponents [1/s]) and ``stable`` (Hill's method; both None when
     not computed); ``status`` 0 when the branch reached ``omega_end`` (DRIFT if a point's drift
     exceeds ``drift_tol``); ``points``/``tangents``/``scales`` of the continuation."""
@@ -151,7 +151,7 @@ def forced_response(structure: Structure, contacts: FrictionContacts | Elements,
 
 class ForcedBranch:
     """The forced-response branch from ``omega_start`` towards ``omega_end`` as a
-    :class:`ringdamper.nonlinear.continuation.CurveProblem` of the solve ``problem``: its residual and
+    :class:`ringdamper.nonlinear.solvers.continuation.CurveProblem` of the solve ``problem``: its residual and
     history hooks, the arc-length scaling (:meth:`rescale`) and the end of the band (:meth:`stop`)."""
 
     jump_mask = None
@@ -178,7 +178,7 @@ class ForcedBranch:
 def point_stability(frf: FRF, tol: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:
     """Largest real part of the Floquet exponents [1/s] of every branch point and its stability
     (``Re λ ≤ tol·ω``), by Hill's method on the full modal Jacobian
-    (:func:`ringdamper.nonlinear.stability.modal_hill_matrices`), each at its accepted point's gauged
+    (:func:`ringdamper.nonlinear.harmonic_balance.stability.modal_hill_matrices`), each at its accepted point's gauged
     directions (the evaluations leave the solve's gauge state as it was)."""
     model, gauge = frf.problem.model, frf.problem.gauge
     growth = np.empty(len(frf.points))

@@ -18,12 +18,12 @@ kept are those in the fundamental strip ``|Im λ| ≤ ω/2`` (Moore 2005, *Int. 
 exponent has ``Re λ ≤ tol·ω`` (the tolerance absorbs the neutral exponents of undamped or free
 rigid-body directions).
 
-Forces that depend on velocity (:class:`ringdamper.nonlinear.elements.TanhFriction`). The contact
+Forces that depend on velocity (:class:`ringdamper.nonlinear.contact.elements.TanhFriction`). The contact
 force of the perturbation is ``δΛ = K_d(t) δd + K_v(t) δḋ`` with ``δḋ = e^{λt}(λ p_d + ṗ_d)``. The
 AFT Jacobian ``K_c`` of the harmonic balance linearises along periodic perturbations, whose velocity
 is ``ω ∂d/∂τ``: it holds ``K_d p_d + K_v ṗ_d``. The rest, ``λ K_v p_d``, is a damping: with the
 velocity Jacobian ``K_v = F diag(∂f/∂ḋ) E`` on the contact slots (the AFT of the samples of
-``∂f/∂ḋ(t)``, :attr:`ringdamper.nonlinear.friction.ContactAFT.jac_velocity`, a real operator on
+``∂f/∂ḋ(t)``, :attr:`ringdamper.nonlinear.contact.friction.ContactAFT.jac_velocity`, a real operator on
 ``(a; b)`` slots like ``K_c``) the pencil becomes
 
     (λ² I + λ (Δ₁ + Pᵀ K_v P) + J) v = 0,
@@ -36,7 +36,7 @@ so they are condensed onto the contact at ``λ = 0`` with their exact receptance
 residual flexibility ``G``, positive because ``ω_r > hω``, as in the condensed harmonic balance);
 the contact stiffness the kept modes see is then ``K_eff = (I + K_c G)⁻¹ K_c``. (Condensing modes
 *below* a harmonic as well would add negative flexibility and spurious real exponents.) A damping
-that couples the modes (``C_off``, :mod:`ringdamper.nonlinear.structure`) keeps every mode of its
+that couples the modes (``C_off``, :mod:`ringdamper.nonlinear.harmonic_balance.structure`) keeps every mode of its
 harmonic: ``Z_h`` and ``Δ₁`` take ``+ i h ω C_off`` and ``+ C_off``. With forces
 that depend on velocity the force through the condensed modes, ``δΛ = (I + (K_c + λK_v) G)⁻¹
 (K_c + λK_v) P η``, is rational in ``λ``; the pencil takes its expansion to first order at ``λ = 0``,
@@ -50,7 +50,7 @@ the condensed modes' own ``λ`` terms left out (``O(|λ| hω/ω_r²)``); with no
 (``band = inf``) the pencil is exact.
 
 Gauged rigid-body directions. Where the condensed HBM holds a free rigid-body direction of the ring
-by its gauge (:mod:`ringdamper.nonlinear.condensed`: the mean position pinned, the unbalanced mean
+by its gauge (:mod:`ringdamper.nonlinear.harmonic_balance.condensed`: the mean position pinned, the unbalanced mean
 force reported as drift), the solution is one of the held system, and so is its stability: those
 directions are removed from the Hill problem. Otherwise their mean position, whose net contact
 stiffness can be slightly negative there, contributes a small real exponent (≈ 0.02 1/s at
@@ -70,8 +70,8 @@ import numpy as np
 import scipy.linalg as sla
 from scipy import sparse
 
-from ringdamper.nonlinear.condensed import apply_contact_jacobian
 from ringdamper.nonlinear.fourier import real_block
+from ringdamper.nonlinear.harmonic_balance.condensed import apply_contact_jacobian
 
 #: modes kept explicit in the Hill problem: ``ω_r ≤ (H + BAND)·ω`` (the others condensed)
 BAND = 1.0
@@ -93,7 +93,7 @@ def is_stable(exponents: np.ndarray, omega: float, tol: float = 1e-6) -> bool:
 
 
 def modal_hill_matrices(model, ev, omega: float, band: float = BAND):
-    """``J`` and ``Δ₁`` of a forced condensed-HBM solution (:class:`~ringdamper.nonlinear.condensed.
+    """``J`` and ``Δ₁`` of a forced condensed-HBM solution (:class:`~ringdamper.nonlinear.harmonic_balance.condensed.
     CondensedHBM`, evaluation ``ev`` with its full AFT Jacobian) on the modes kept explicit
     (``ω_r ≤ (H + band)·ω``), slots ``[η_0 | a_1, b_1 | … | a_H, b_H]`` (``η_h = a_h − i b_h``):
     ``J = ⊕_h real(diag(z_h)) + Pᵀ K_eff P`` and ``Δ₁ = ⊕_h real(diag(c_r + 2ihω)) + Pᵀ K_v,eff P``
@@ -164,7 +164,7 @@ def _through_matrix(model, kc: np.ndarray, G: list) -> np.ndarray:
     """``I + K_c G`` (Fortran order, for an LU in place) with ``G = ⊕_h G_h`` block diagonal over the
     harmonics' contact slots: its columns of harmonic ``h`` are ``K_c[:, h] G_h``, formed pair by pair
     from the AFT Jacobian ``kc`` (np, 3, C, 3, C) as the transpose of ``G_hᵀ K_cᵀ[h, :]``
-    (:func:`~ringdamper.nonlinear.condensed.apply_contact_jacobian`), so the zero blocks of ``G`` and
+    (:func:`~ringdamper.nonlinear.harmonic_balance.condensed.apply_contact_jacobian`), so the zero blocks of ``G`` and
     of ``K_c`` cost nothing."""
     M = np.empty((model.n_d, model.n_d), order="F")
     kcT = kc.transpose(0, 3, 4, 1, 2)
@@ -177,7 +177,7 @@ def _through_matrix(model, kc: np.ndarray, G: list) -> np.ndarray:
 
 def _rest_receptance(model, h: int, omega: float, z: np.ndarray, keep: np.ndarray) -> np.ndarray:
     """``Σ_r ψ_r ψ_rᴴ / z_r`` over the modes of harmonic ``h`` not kept (``~keep``): the model's receptance of
-    its condensed modes (:meth:`~ringdamper.nonlinear.condensed.CondensedHBM.receptance`, summed by its
+    its condensed modes (:meth:`~ringdamper.nonlinear.harmonic_balance.condensed.CondensedHBM.receptance`, summed by its
     series where it has one), less the condensed modes kept and plus the explicit modes not kept, both
     few."""
     m, condensed, explicit = model.modal[h], model.Cset[h], model.S[h]

@@ -5,7 +5,7 @@ iterations stay few).
 
 Along a continuation the Jacobian of neighbouring points differs by a small change (the contact
 pairs whose stick/slip state changes, ω and ξ); the LU of one point then makes GMRES on the next
-converge in a few iterations, each a product ``J v`` (:mod:`ringdamper.nonlinear.jacobian`) and a
+converge in a few iterations, each a product ``J v`` (:mod:`ringdamper.nonlinear.solvers.jacobian`) and a
 triangular solve, far cheaper than forming and factorising ``J``. When GMRES needs more than
 ``max_iterations`` the Jacobian is formed and factorised after all, and that LU serves the next
 points.
@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.sparse.linalg import LinearOperator, gmres
 
-from ringdamper.nonlinear.jacobian import apply, dense
+from ringdamper.nonlinear.solvers.jacobian import apply, dense
 
 #: GMRES iterations (one ``J v`` product and one triangular solve each) after which the Jacobian
 #: is factorised instead: about the cost of forming and factorising it on the campaign's rings.
@@ -34,7 +34,7 @@ MIN_SIZE = 400
 
 class LaggedSolver:
     """Solver of ``J x = b`` for the Jacobian ``J`` (operator) of one point, preconditioned by
-    ``base`` (a :class:`ringdamper.nonlinear.newton.Factorization` of an earlier Jacobian of the
+    ``base`` (a :class:`ringdamper.nonlinear.solvers.newton.Factorization` of an earlier Jacobian of the
     same shape); ``weights``: ``1/scale`` of the unknowns. ``factorize(J)`` builds the LU used
     when GMRES does not converge (it then solves every later system directly)."""
 

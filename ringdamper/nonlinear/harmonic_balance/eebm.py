@@ -8,14 +8,14 @@ For every dNNM point (ω, ζ = ξ/2ω, modal coordinates ``η_{h,r}``), with the
 
 with ``C`` the structural damping ``zeta_s`` when the backbone was computed without it (the campaign).
 A backbone of a structure with its own damping already has it in ``ξ`` (the EPMC's negative damping
-balances every dissipation, :mod:`ringdamper.nonlinear.epmc`), so there ``c_r = 0`` and ``zeta_s``
+balances every dissipation, :mod:`ringdamper.nonlinear.harmonic_balance.epmc`), so there ``c_r = 0`` and ``zeta_s``
 must be zero: adding it would count that damping twice.
     E_f(γ, φ) = ∫_0^T Re(γ e^{iφ} F̂ e^{iωt}) · q̇ dt = π γ Im(e^{iφ} Q_1ᴴ F̂)      (Eq. 5),
 
 so ``max_φ E_f = π γ |Q_1ᴴ F̂|`` at ``φ = π/2 − arg(Q_1ᴴ F̂)`` and ``E_f = E_damp`` gives
 ``γ = E_damp / (π |Q_1ᴴ F̂|)``. ``φ`` is the phase of the forcing relative to the dNNM's phase
 normalisation. The energy dissipated by each contact pair per cycle is
-``∮ λ·ḋ = π Σ_h h (λa_h db_h − λb_h da_h)`` (:func:`ringdamper.nonlinear.friction.dissipated_energy`).
+``∮ λ·ḋ = π Σ_h h (λa_h db_h − λb_h da_h)`` (:func:`ringdamper.nonlinear.contact.friction.dissipated_energy`).
 
 Validity. The E-EBM places the resonance on the undamped-like backbone (phase resonance); the
 forced peak drifts off it as the total damping grows. With the total damping ratio seen by the mode
@@ -35,9 +35,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ringdamper.nonlinear.epmc import Backbone
-from ringdamper.nonlinear.friction import dissipated_energy
-from ringdamper.nonlinear.response import response_harmonics, time_peak
+from ringdamper.nonlinear.contact.friction import dissipated_energy
+from ringdamper.nonlinear.harmonic_balance.epmc import Backbone
+from ringdamper.nonlinear.harmonic_balance.response import response_harmonics, time_peak
 
 log = logging.getLogger(__name__)
 

@@ -2,7 +2,7 @@
 
     M q̈ + (C − ξ M) q̇ + K q + Bᵀ (λ(q, w) − λ_static) = 0,      ξ = 2 ζ ω,
 
-with the 3-D Jenkins element of :mod:`ringdamper.nonlinear.friction` (normal spring
+with the 3-D Jenkins element of :mod:`ringdamper.nonlinear.contact.friction` (normal spring
 ``N = max(0, N0 + kn (d_n − gap))``, per tangential direction a spring ``kt`` in series with a
 Coulomb slider ``w``, slip limit ``μ N``). ``q`` is measured from the static equilibrium, where
 ``λ_static = (N0, 0, 0)`` is balanced by the static loads (as in the HBM). ``C`` is the structure's
@@ -22,7 +22,7 @@ state ``x = [q, q̇, w]``, the EPMC amplitude condition ``½ log(Q_1ᴴ M Q_1) �
 fundamental ``Q_1 = (2/T) ∫ q e^{−iωt} dt`` (rectangle rule on the step samples, exact to the
 order of the scheme for a periodic signal) and the phase condition ``gᵀ b_1 = 0`` (the sine
 coefficient of the coordinate ``gᵀ q`` vanishes, as in
-:class:`~ringdamper.nonlinear.epmc.EPMCProblem`).
+:class:`~ringdamper.nonlinear.harmonic_balance.epmc.EPMCProblem`).
 Newton with the exact Jacobian of the discrete map (forward tangent propagation through the RK4
 stages and the clips; ``Δt`` depends on ω). A pair that sticks through the whole period leaves its
 slider undetermined (any position inside its band is periodic); the Newton step is the
@@ -34,10 +34,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ringdamper.nonlinear.epmc import Backbone
+from ringdamper.nonlinear.contact.friction import FrictionContacts, contact_aft
 from ringdamper.nonlinear.fourier import Fourier
-from ringdamper.nonlinear.friction import FrictionContacts, contact_aft
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.harmonic_balance.epmc import Backbone
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
 RK4_NODES = (0.0, 0.5, 0.5, 1.0)
 RK4_WEIGHTS = np.array([1.0, 2.0, 2.0, 1.0]) / 6.0

@@ -9,9 +9,9 @@ from functools import lru_cache
 
 import numpy as np
 
-from ringdamper.nonlinear.epmc import linear_limit
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.contact.friction import FrictionContacts
+from ringdamper.nonlinear.harmonic_balance.epmc import linear_limit
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
 SEEDS = range(200)
 """The family's seeds."""

@@ -1,15 +1,15 @@
 """Newton–Raphson on dense Jacobians with exact elimination of trivial unknowns.
 
-The condensed HBM Jacobian (:mod:`ringdamper.nonlinear.condensed`) has unit-vector columns for the
+The condensed HBM Jacobian (:mod:`ringdamper.nonlinear.harmonic_balance.condensed`) has unit-vector columns for the
 contact coordinates of pairs whose contact Jacobian vanishes (open during the whole period, or
 decoupled): such an unknown appears only in its own row (identity) and possibly in the extra
 rows appended by the problem (normalisation, phase, arc-length). :class:`Factorization`
 eliminates them exactly before the LU factorisation, so the dense solve only involves the
 active pairs.
 
-A problem may give its Jacobian as an operator (:mod:`ringdamper.nonlinear.jacobian`): Newton forms
+A problem may give its Jacobian as an operator (:mod:`ringdamper.nonlinear.solvers.jacobian`): Newton forms
 it when it factorises, and the continuation's tangents solve with it by GMRES on a lagged
-factorisation (:func:`linear_solver`, :mod:`ringdamper.nonlinear.krylov`). Newton's own steps always
+factorisation (:func:`linear_solver`, :mod:`ringdamper.nonlinear.solvers.krylov`). Newton's own steps always
 use an LU: its chord steps with the factorisation it was given (a lagged solver's LU), a fresh
 Jacobian factorised. Measured on the default ring (H = 3, n ≈ 1480; docs/nonlinear_core.md §10):
 GMRES Newton steps on a lagged LU, or chord steps by GMRES, cost more than they save (a pair that
@@ -25,9 +25,9 @@ import numpy as np
 import scipy.linalg as sla
 from scipy.linalg.lapack import dgecon, dlange, get_lapack_funcs
 
-from ringdamper.nonlinear import krylov
-from ringdamper.nonlinear.jacobian import dense, is_operator
-from ringdamper.nonlinear.krylov import LaggedSolver
+from ringdamper.nonlinear.solvers import krylov
+from ringdamper.nonlinear.solvers.jacobian import dense, is_operator
+from ringdamper.nonlinear.solvers.krylov import LaggedSolver
 
 
 class Factorization:
@@ -38,7 +38,7 @@ class Factorization:
     ``scale`` (the unknowns' convergence scales): the Schur matrix ``A`` is factorised equilibrated,
     ``D_r A D_c`` with ``D_c = diag(scale)`` and ``D_r`` one over each row's largest entry of
     ``A D_c``, and :meth:`condition` estimates κ₁ of that matrix
-    (:mod:`ringdamper.nonlinear.conditioning`); the solves are those of ``A``."""
+    (:mod:`ringdamper.nonlinear.indicators.conditioning`); the solves are those of ``A``."""
 
     def __init__(self, J: np.ndarray, trivial: np.ndarray | None, n_core: int, overwrite: bool = False,
                  scale: np.ndarray | None = None):
@@ -62,7 +62,7 @@ class Factorization:
 
     @property
     def factorization(self) -> "Factorization":
-        """Itself (the LU a :class:`ringdamper.nonlinear.krylov.LaggedSolver` stands on otherwise)."""
+        """Itself (the LU a :class:`ringdamper.nonlinear.solvers.krylov.LaggedSolver` stands on otherwise)."""
         return self
 
     def solve(self, b: np.ndarray) -> np.ndarray:
@@ -121,7 +121,8 @@ def linear_solver(J, trivial: np.ndarray | None, n_core: int, previous=None,
                   weights: np.ndarray | None = None, rtol: float = krylov.RTOL):
     """Solver of systems with the Jacobian ``J``: GMRES preconditioned by the LU of ``previous``
     (a solver of an earlier Jacobian of the same shape) when ``J`` is an operator of at least
-    :data:`ringdamper.nonlinear.krylov.MIN_SIZE` unknowns (:class:`ringdamper.nonlinear.krylov.LaggedSolver`;
+    :data:`ringdamper.nonlinear.solvers.krylov.MIN_SIZE` unknowns
+    (:class:`ringdamper.nonlinear.solvers.krylov.LaggedSolver`;
     ``weights``: 1/scale of the unknowns; ``rtol``: the GMRES accuracy), otherwise the
     :class:`Factorization` of ``J``."""
     lagged = is_operator(J) and J.shape[0] >= krylov.MIN_SIZE
@@ -175,7 +176,7 @@ def newton(fun: Callable, z0: np.ndarray, scale: Callable[[np.ndarray], np.ndarr
            quasi_newton: bool = False) -> NewtonResult:
     """Newton's method with Jacobian reuse and damping for ``r(z) = 0``.
 
-    ``fun(z, jacobian) -> Evaluation`` (:class:`ringdamper.nonlinear.jacobian.Evaluation`; ``J`` None
+    ``fun(z, jacobian) -> Evaluation`` (:class:`ringdamper.nonlinear.solvers.jacobian.Evaluation`; ``J`` None
     when not requested).
     Converged when the step ``δz`` computed at ``z`` satisfies ``max |δz| / scale(z) ≤ tol``; ``z``
     and its evaluation are returned (outputs are consistent with ``z``), with the factorisation

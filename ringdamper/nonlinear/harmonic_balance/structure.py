@@ -9,7 +9,7 @@ harmonic ``h`` of the reference sector times ``e^{iσ_h j}``, ``σ_h = −2π h 
 Harmonic 0 is ND 0 and real. A non-cyclic structure uses the same real matrices for every ``h``.
 
 Each harmonic is diagonalised once (``K_h φ = ω_r² M_h φ``, ``φᴴ M_h φ = 1``, all modes): this is
-what the exact condensation of :mod:`ringdamper.nonlinear.condensed` sums over.
+what the exact condensation of :mod:`ringdamper.nonlinear.harmonic_balance.condensed` sums over.
 
 Structural damping is given per harmonic either as a viscous matrix ``C_h`` or as modal damping
 ratios ``ζ_r`` of the modes of ``(K_h, M_h)`` (``C_h = M_h Φ diag(2 ζ_r ω_r) Φᴴ M_h``); either gives the
@@ -18,7 +18,7 @@ receptances use (:meth:`ModalHarmonic.damping`). A ``C_h`` that is *not* diagona
 (``φ_rᴴ C_h φ_s ≠ 0`` for some ``r ≠ s``, relative to the largest modal entry above
 :data:`COUPLING_TOL`: a dashpot on one DoF, damping non-proportional to ``(K, M)``) couples the modes;
 its off-diagonal part is kept as ``ModalHarmonic.coupling`` and the analyses then keep every mode of
-that harmonic as an unknown instead of condensing it (:mod:`ringdamper.nonlinear.condensed`), exact
+that harmonic as an unknown instead of condensing it (:mod:`ringdamper.nonlinear.harmonic_balance.condensed`), exact
 and meant for the small systems where such damping is given.
 Every matrix and vector is checked at construction: the message names the argument, the shape
 expected and the shape given.
@@ -32,7 +32,7 @@ from typing import Callable, Sequence
 import numpy as np
 import scipy.linalg as sla
 
-from ringdamper.fem.cyclic import interblade_phase, nodal_diameter  # noqa: F401 (re-exported)
+from ringdamper.fem.cyclic import interblade_phase
 
 #: off-diagonal modal damping below this fraction of the largest modal entry counts as modal (dropped)
 COUPLING_TOL = 1e-8

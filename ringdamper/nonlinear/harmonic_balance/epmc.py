@@ -3,14 +3,14 @@ docs/design.md §3.4).
 
     M q̈ + (C − ξ M) q̇ + K q + Bᵀ λ(Bq) = 0,       ξ = 2 ζ ω,
 
-with ``C`` the structure's own damping (matrix or modal ratios, :mod:`ringdamper.nonlinear.structure`;
+with ``C`` the structure's own damping (matrix or modal ratios, :mod:`ringdamper.nonlinear.harmonic_balance.structure`;
 absent in the campaign, whose structural damping enters the E-EBM only). The artificial negative
 damping acts on the mass matrix (Krack's definition), so ``ξ`` balances every dissipation over a
 period, ``ξ ∫ q̇ᵀ M q̇ dt = ∫ q̇ᵀ C q̇ dt + ∮ λ · dd``, and ``ζ`` is the total damping ratio. For a linear
 system with modal damping ``c_r = 2 ζ_r ω_r`` the solution is the mode itself: ``ω = ω_r`` (the
 undamped natural frequency, ``|λ|`` of the eigenvalue ``λ = −ζ_r ω_r ± i ω_r √(1 − ζ_r²)``) and ``ζ = ζ_r``.
 
-solved by harmonic balance (condensed, :mod:`ringdamper.nonlinear.condensed`) with unknowns
+solved by harmonic balance (condensed, :mod:`ringdamper.nonlinear.harmonic_balance.condensed`) with unknowns
 ``z = [y, ω, ξ]`` and two extra equations:
 
 * amplitude: ``½ log(Q_1ᴴ M_1 Q_1) − log α = 0`` (fundamental harmonic mass-normalised,
@@ -25,7 +25,7 @@ common grid are converged solutions, not interpolants). The start is the lineari
 (contact springs ``(kn, kt, kt)`` on preloaded pairs, :meth:`Structure.stuck_modes`).
 
 A solve is an :class:`EPMCProblem`: the condensed model (fixed, shared by every solve on it) and the
-solve's own gauge state (:class:`ringdamper.nonlinear.condensed.GaugeState`), which its evaluations,
+solve's own gauge state (:class:`ringdamper.nonlinear.harmonic_balance.condensed.GaugeState`), which its evaluations,
 accepted points and failed steps replace. :meth:`Backbone.problem` is the problem of one point of a
 backbone, to restart from it; :func:`resolve_point` and :func:`continue_point` solve a point again at
 another truncation or amplitude.
@@ -37,14 +37,25 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ringdamper.nonlinear.condensed import CondensedHBM, GaugeState, pole_modes, squared_amplitude, structural_damping
-from ringdamper.nonlinear.continuation import ContinuationPoint, NaturalResult, StepControl, natural_then_arclength
-from ringdamper.nonlinear.elements import Elements
+from ringdamper.nonlinear.contact.elements import Elements
+from ringdamper.nonlinear.contact.friction import FrictionContacts
 from ringdamper.nonlinear.fourier import default_nt
-from ringdamper.nonlinear.friction import FrictionContacts
-from ringdamper.nonlinear.jacobian import Evaluation, bordered
-from ringdamper.nonlinear.newton import newton
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.harmonic_balance.condensed import (
+    CondensedHBM,
+    GaugeState,
+    pole_modes,
+    squared_amplitude,
+    structural_damping,
+)
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
+from ringdamper.nonlinear.solvers.continuation import (
+    ContinuationPoint,
+    NaturalResult,
+    StepControl,
+    natural_then_arclength,
+)
+from ringdamper.nonlinear.solvers.jacobian import Evaluation, bordered
+from ringdamper.nonlinear.solvers.newton import newton
 from ringdamper.status import Status
 
 
@@ -62,7 +73,7 @@ class Backbone:
     :func:`resolve_point` needs to build the same problem at another H); ``amplitude`` the row
     ``w`` whose harmonic-1 amplitude α is (None: the modal amplitude); ``condition`` the κ₁
     estimate of each point's equilibrated Jacobian where the continuation factorised it
-    (:class:`ringdamper.nonlinear.continuation.ContinuationPoint`; NaN elsewhere, None: none)."""
+    (:class:`ringdamper.nonlinear.solvers.continuation.ContinuationPoint`; NaN elsewhere, None: none)."""
 
     alpha: np.ndarray
     omega: np.ndarray
@@ -112,13 +123,13 @@ class Backbone:
 
 
 class EPMCProblem:
-    """One EPMC solve (a :class:`ringdamper.nonlinear.continuation.ParameterProblem`): residual
+    """One EPMC solve (a :class:`ringdamper.nonlinear.solvers.continuation.ParameterProblem`): residual
     ``[r_core; amplitude; phase]`` of ``z = [y, ω, ξ]`` at ``s = log α`` on the condensed ``model``
     (fixed, may be shared), in the solve's gauge state ``gauge`` (default the model's
-    :meth:`~ringdamper.nonlinear.condensed.CondensedHBM.initial_gauge`). ``gauge`` is the one thing that
-    changes: every evaluation (:meth:`fun`), accepted point (:meth:`accept`) and failed step
-    (:meth:`on_failure`) replaces it by the state it returns. ``amplitude``: the row ``w`` (n,) whose
-    harmonic-1 amplitude α is, None for the modal amplitude."""
+    :meth:`~ringdamper.nonlinear.harmonic_balance.condensed.CondensedHBM.initial_gauge`).
+    ``gauge`` is the one thing that changes: every evaluation (:meth:`fun`), accepted point
+    (:meth:`accept`) and failed step (:meth:`on_failure`) replaces it by the state it returns. ``amplitude``: the
+    row ``w`` (n,) whose harmonic-1 amplitude α is, None for the modal amplitude."""
 
     def __init__(self, model: CondensedHBM, phase_index: int, drift_tol: float = 1e-8,
                  amplitude: np.ndarray | None = None, gauge: GaugeState | None = None):
@@ -156,7 +167,7 @@ class EPMCProblem:
 
     def accept(self, z, ev) -> None:
         """The accepted point ``z`` (evaluated as ``ev``): the gauge state after it
-        (:meth:`ringdamper.nonlinear.condensed.CondensedHBM.accepted`)."""
+        (:meth:`ringdamper.nonlinear.harmonic_balance.condensed.CondensedHBM.accepted`)."""
         self.gauge = self.model.accepted(self.gauge, z[:-2], ev)
 
     def _jump_mask(self) -> np.ndarray:
@@ -173,7 +184,7 @@ class EPMCProblem:
 
     def on_failure(self) -> bool:
         """After a failed step: pin the rigid-body directions whose hold was lost on the way
-        (:meth:`ringdamper.nonlinear.condensed.GaugeState.pin_seen`); True if that changed the problem
+        (:meth:`ringdamper.nonlinear.harmonic_balance.condensed.GaugeState.pin_seen`); True if that changed the problem
         (retry the step)."""
         self.gauge, added = self.gauge.pin_seen()
         return added
@@ -226,10 +237,10 @@ def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, 
     ``drift_tol``: relative size of the dropped rigid-body equilibrium above which a converged
     point gets status DRIFT.
     ``max_arc_points``: arc-length points allowed past a fold in α (default
-    :meth:`ringdamper.nonlinear.continuation.StepControl.arc_points`). ``tol`` and ``max_iter`` are the
+    :meth:`ringdamper.nonlinear.solvers.continuation.StepControl.arc_points`). ``tol`` and ``max_iter`` are the
     Newton settings of every solve (they replace those of ``steps``).
     The condensed model's receptance series are formed about the frequency the first Newton solve
-    starts from (:class:`ringdamper.nonlinear.condensed.CondensedHBM`, ``expansion``).
+    starts from (:class:`ringdamper.nonlinear.harmonic_balance.condensed.CondensedHBM`, ``expansion``).
     """
     t0 = time.perf_counter()
     alpha = np.asarray(alpha, float)
@@ -393,7 +404,7 @@ def resolve_point(backbone: Backbone, i: int, H: int, nt: int | None = None, tol
     ``models``: the problems at higher truncations that earlier calls for points of the same backbone
     built, by ``(H, nt)``; the one needed is taken from it or built and added (its receptance series
     formed about this point's start), so that its modal data and receptance series are formed once for
-    all points (:class:`ringdamper.nonlinear.receptance.Receptance`; the series then serves every point
+    all points (:class:`ringdamper.nonlinear.harmonic_balance.receptance.Receptance`; the series then serves every point
     within its reach, to rounding). The model is fixed: each point's solve has its own gauge state
     (that of point ``i``: its pinned directions, reference its start's zero-mode positions)."""
     t0 = time.perf_counter()

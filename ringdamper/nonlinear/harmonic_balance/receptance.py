@@ -2,7 +2,7 @@
 
 With no damping on harmonic ``h`` (the campaign's EPMC: structural damping enters the E-EBM only) the
 modal impedances are ``z_r = ω_r² − s`` with one complex shift for all modes, ``s = (hω)² + i hωξ``
-(:meth:`ringdamper.nonlinear.condensed.CondensedHBM._modal_impedance`), and the receptance the Jacobian
+(:meth:`ringdamper.nonlinear.harmonic_balance.condensed.CondensedHBM._modal_impedance`), and the receptance the Jacobian
 needs at every factorisation is
 
     G(s) = Ψ_C diag(1 / (ω_r² − s)) Ψ_Cᴴ        (p × p, over the m condensed modes: ≈ 8 p² m flops).
@@ -10,7 +10,7 @@ needs at every factorisation is
 Most condensed modes of a Craig–Bampton model lie far above ``hω`` (the campaign's rings: 90 % of the
 543 modes above 40 hω, the constraint modes of the stiff contact springs). For those *far* modes,
 ``ω_r² > FAR² |s₀|`` at the expansion point ``s₀`` (given when the receptance is built: a solve's start
-point, :class:`ringdamper.nonlinear.condensed.CondensedHBM`), the geometric series
+point, :class:`ringdamper.nonlinear.harmonic_balance.condensed.CondensedHBM`), the geometric series
 
     1 / (ω_r² − s) = Σ_k s^k / ω_r^{2(k+1)},   |s| / ω_r² ≤ q = |s| / min_far ω_r²
 

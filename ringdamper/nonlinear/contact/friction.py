@@ -36,9 +36,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ringdamper.fem.contact_law import spring_diagonal, stuck_springs
-from ringdamper.nonlinear.coulomb import coulomb_slider
+from ringdamper.nonlinear.contact.coulomb import coulomb_slider
+from ringdamper.nonlinear.contact.play import play_operator
 from ringdamper.nonlinear.fourier import Fourier
-from ringdamper.nonlinear.play import play_operator
 
 LAWS = ("jenkins", "coulomb")
 
@@ -104,7 +104,7 @@ class FrictionContacts:
     def aft(self, fourier: Fourier, d: np.ndarray, jacobian: bool | str = True,
             memory: np.ndarray | None = None, omega: float | None = None) -> "ContactAFT":
         """:func:`contact_aft` of these contacts (the interface the harmonic balance asks of a
-        nonlinearity, shared with :class:`ringdamper.nonlinear.elements.Elements`); the contact forces
+        nonlinearity, shared with :class:`ringdamper.nonlinear.contact.elements.Elements`); the contact forces
         do not depend on velocity, so ``omega`` is not used."""
         return contact_aft(self, fourier, d, jacobian, memory)
 
@@ -231,7 +231,7 @@ def _jenkins(cp, E, d, r, closed, jacobian, memory):
 
 
 def _coulomb(cp, E, d, r, closed, jacobian, memory, tol, max_periods):
-    """Isotropic Coulomb slider (:func:`ringdamper.nonlinear.coulomb.coulomb_slider`): forces
+    """Isotropic Coulomb slider (:func:`ringdamper.nonlinear.contact.coulomb.coulomb_slider`): forces
     ``(np, 2, Nt)`` and ``∂T/∂c`` ``(np, 2, Nt, 3C)``."""
     W, dW = coulomb_slider(cp.mu * cp.kn / cp.kt, E, d, r, closed, bool(jacobian), memory, tol, max_periods)
     kt = cp.kt[:, None, None]

@@ -1,11 +1,12 @@
 """Condition number of the Newton Jacobian at every converged point of a backbone (docs/nonlinear_core.md §4.6).
 
-The EPMC point ``z = [y, ω, ξ]`` solves ``r(z) = 0`` (:class:`ringdamper.nonlinear.epmc.EPMCProblem`).
-Newton stops when its correction ``δz = −J⁻¹ r`` is below ``tol`` in the scaled unknowns
-``z_i / scale_i`` (:meth:`ringdamper.nonlinear.epmc.EPMCProblem.scale`), so the returned point is within
-about ``tol`` of the exact root, in that measure, whatever the Jacobian. What rounding adds is ``J⁻¹ δr`` with ``δr``
-the rounding of the residual, ``|δr_i| ≈ ε · (size of the terms of row i)``. In the scaled unknowns
-and with every row divided by its largest Jacobian entry (the size of its terms at the scaled unit
+The EPMC point ``z = [y, ω, ξ]`` solves ``r(z) = 0``
+(:class:`ringdamper.nonlinear.harmonic_balance.epmc.EPMCProblem`). Newton stops when its correction ``δz = −J⁻¹ r``
+is below ``tol`` in the scaled unknowns ``z_i / scale_i``
+(:meth:`ringdamper.nonlinear.harmonic_balance.epmc.EPMCProblem.scale`), so the returned
+point is within about ``tol`` of the exact root, in that measure, whatever the Jacobian. What rounding
+adds is ``J⁻¹ δr`` with ``δr`` the rounding of the residual, ``|δr_i| ≈ ε · (size of the terms of row i)``. In the
+scaled unknowns and with every row divided by its largest Jacobian entry (the size of its terms at the scaled unit
 step), that is at most about ``κ ε`` with
 
     κ = κ₁(D_r J D_c),     D_c = diag(scale(z)),     D_r = diag(1 / max_j |J_ij D_c,jj|),
@@ -15,17 +16,18 @@ FMA or not) give two such roundings, so the two converged points differ by up to
 scaled: with ``tol = 1e-8`` the first term is 2e-8, and the second exceeds 1e-6 when
 ``κ > 1e-6 / (2 ε) ≈ 2.25e9`` (:data:`ILL_CONDITIONED`).
 
-``J`` is that of :meth:`ringdamper.nonlinear.epmc.EPMCProblem.fun` at the point, in its gauge state (its
-pinned rigid-body directions: :meth:`Backbone.problem`), with the trivial unknowns (unit columns in the core
-rows: contact slots of pairs open over the whole period) eliminated as the Newton does: ``A = J_NN − J_NT J_TN``. κ is
-LAPACK's estimate ``1 / dgecon`` from the LU of ``D_r A D_c`` (Higham's 1-norm estimator, within a
-factor of a few of the exact value; :meth:`ringdamper.nonlinear.newton.Factorization.condition`). The
+``J`` is that of :meth:`ringdamper.nonlinear.harmonic_balance.epmc.EPMCProblem.fun` at the point, in its
+gauge state (its pinned rigid-body directions: :meth:`Backbone.problem`), with the trivial unknowns
+(unit columns in the core rows: contact slots of pairs open over the whole period) eliminated as the Newton does:
+``A = J_NN − J_NT J_TN``. κ is LAPACK's estimate ``1 / dgecon`` from the LU of ``D_r A D_c`` (Higham's 1-norm
+estimator, within a
+factor of a few of the exact value; :meth:`ringdamper.nonlinear.solvers.newton.Factorization.condition`). The
 natural continuation forms that LU at every grid value it lands on, for the point's tangent, and keeps
 the estimate (``Backbone.condition``); the points solved otherwise (the grid values past a fold, solved
 from the arc-length branch; a single point solved again at another H) get theirs here.
 
 The points solved by the stuck shortcut (all pairs stick: ``y(α) = (α/α₁) y(α₁)``, same ω and ξ)
-share one Jacobian up to ``J(α) = S_r J(α₁) S_c`` (:func:`ringdamper.nonlinear.epmc._stuck_points`):
+share one Jacobian up to ``J(α) = S_r J(α₁) S_c`` (:func:`ringdamper.nonlinear.harmonic_balance.epmc._stuck_points`):
 ``S_r`` scales the amplitude row, which ``D_r`` undoes, and ``S_c`` the ω and ξ columns by ``α/α₁``
 as ``scale(z)`` scales the ``y`` columns, so ``D_r J D_c`` and κ are those of the first of them.
 
@@ -38,9 +40,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ringdamper.nonlinear.epmc import Backbone
-from ringdamper.nonlinear.jacobian import dense
-from ringdamper.nonlinear.newton import Factorization
+from ringdamper.nonlinear.harmonic_balance.epmc import Backbone
+from ringdamper.nonlinear.solvers.jacobian import dense
+from ringdamper.nonlinear.solvers.newton import Factorization
 from ringdamper.status import usable_status
 
 #: κ above which rounding alone may move a converged point by more than 1e-6 (relative, scaled

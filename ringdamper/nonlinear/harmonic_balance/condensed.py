@@ -1,13 +1,13 @@
 """Harmonic balance residual condensed exactly onto the contact coordinates (docs/design.md §3.4).
 
 Per harmonic h the linear DoFs are eliminated by modal summation over *all* modes of
-``(K_h, M_h)`` (:mod:`ringdamper.nonlinear.structure`). With modal damping ``c_r`` and the EPMC term
+``(K_h, M_h)`` (:mod:`ringdamper.nonlinear.harmonic_balance.structure`). With modal damping ``c_r`` and the EPMC term
 ``−ξ M q̇`` (Krack 2015) the modal receptance is diagonal:
 
     z_r = ω_r² − h²ω² + i h ω (c_r − ξ),       η_{h,r} = (f_{h,r} − ψ_rᴴ Λ_h) / z_r,
 
 with ``ψ_r = B_h φ_r`` and modal force ``f = γ Φᴴ F_h``. Damping that couples the modes (a ``C_h`` not
-diagonal in them, :mod:`ringdamper.nonlinear.structure`) makes the receptance a full matrix: every mode
+diagonal in them, :mod:`ringdamper.nonlinear.harmonic_balance.structure`) makes the receptance a full matrix: every mode
 of that harmonic is then explicit, and its rows carry the coupling,
 ``z_S η_S + i h ω C_off η_S``. Otherwise most modes are condensed
 (``r ∈ C_h``); a few are kept as explicit unknowns (``r ∈ S_h``): the zero-frequency modes of
@@ -18,14 +18,14 @@ displacements ``d`` (slot-major, ``(C, p)``), then ``η_{h,S}`` (harmonic 0 real
 
     r_{d,h} = D_h − Σ_{r∈C} ψ_r η_{h,r} − Σ_{r∈S} ψ_r η_{h,r},      r_{η,h} = z_S η_S − (f_S − Ψ_Sᴴ Λ_h),
 
-with ``Λ_h`` the contact forces from the AFT (:mod:`ringdamper.nonlinear.friction`) minus the static
+with ``Λ_h`` the contact forces from the AFT (:mod:`ringdamper.nonlinear.contact.friction`) minus the static
 contact force ``(N0, 0, 0)``: displacements are measured from the static equilibrium, where
 that force is balanced by the static loads. The slider memory before the period is the static
 state (slider at zero) at every evaluation, so a solution depends on its own unknowns only, not on
 the continuation path: a pair that slips during the period has a unique periodic state anyway,
 and a pair that sticks throughout keeps the static slider position projected onto the band of
 positions that stick, ``[max_k(d_k − r_k), min_k(d_k + r_k)]``, i.e. it is pushed only as far as
-the motion forces it (:func:`ringdamper.nonlinear.play.play_operator`), independently of where
+the motion forces it (:func:`ringdamper.nonlinear.contact.play.play_operator`), independently of where
 the period starts. (Carrying the last accepted point's slider state instead puts every pair that the
 growing amplitude pushes exactly on its stick/slip kink at every accepted point; Newton then
 cycles between the two sides.)
@@ -33,7 +33,7 @@ cycles between the two sides.)
 Jacobian: ``∂r/∂y = I + A_h K_c`` with ``A_h = [Ψ_C diag(1/z_C) Ψ_Cᴴ ; Ψ_Sᴴ]`` per harmonic and
 ``K_c`` the AFT Jacobian (block-diagonal over pairs), plus the explicit-mode blocks. The ω column is
 ``∂z/∂ω`` through the receptances plus, for forces that depend on velocity (the AFT's
-``dlam_domega``, e.g. :class:`ringdamper.nonlinear.elements.TanhFriction`), ``A_h ∂Λ_h/∂ω``. It is an
+``dlam_domega``, e.g. :class:`ringdamper.nonlinear.contact.elements.TanhFriction`), ``A_h ∂Λ_h/∂ω``. It is an
 operator (:class:`CoreJacobian`): its product with a vector is the residual's linearisation,
 ``δr_{d,h} = δD_h + Ψ_C diag(1/z_C) Ψ_Cᴴ δΛ_h − Ψ_S δη_S``, ``δr_{η,h} = z_S δη_S + Ψ_Sᴴ δΛ_h``,
 ``δΛ = K_c δd`` (``O(p·m)`` per harmonic), and the matrix (``O(p²·m)``: the receptances ``G_h``) is
@@ -73,7 +73,8 @@ points of a ring). What a solve carries from one evaluation to the next is its :
 value: :meth:`CondensedHBM.evaluate` takes one and returns, in :attr:`CoreEval.state`, the state
 after that evaluation; :meth:`CondensedHBM.accepted`, :meth:`GaugeState.pin` and
 :meth:`GaugeState.pin_seen` return new states. A problem built on the model
-(:class:`ringdamper.nonlinear.epmc.EPMCProblem`, :class:`ringdamper.nonlinear.forced.ForcedProblem`)
+(:class:`ringdamper.nonlinear.harmonic_balance.epmc.EPMCProblem`,
+:class:`ringdamper.nonlinear.harmonic_balance.forced.ForcedProblem`)
 is one solve: it holds the state and replaces it by each evaluation's.
 """
 from __future__ import annotations
@@ -82,11 +83,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ringdamper.nonlinear.elements import Elements
+from ringdamper.nonlinear.contact.elements import Elements
+from ringdamper.nonlinear.contact.friction import ContactAFT, FrictionContacts
 from ringdamper.nonlinear.fourier import Fourier, real_block, real_vector, to_complex
-from ringdamper.nonlinear.friction import ContactAFT, FrictionContacts
-from ringdamper.nonlinear.receptance import DampedReceptance, Receptance
-from ringdamper.nonlinear.structure import Structure
+from ringdamper.nonlinear.harmonic_balance.receptance import DampedReceptance, Receptance
+from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
 
 @dataclass(frozen=True)
@@ -422,9 +423,10 @@ class CondensedHBM:
     def receptance(self, h: int, omega: float, xi: float, z: np.ndarray) -> np.ndarray:
         """``G_h = Ψ_C diag(1/z_C) Ψ_Cᴴ`` at ``(ω, ξ)`` (``z``: the modal impedances there). Where
         harmonic ``h`` is undamped (and always at h = 0, where ``z_r = ω_r²``), ``z_r = ω_r² − s`` with
-        ``s = (hω)² + i hωξ``, and :class:`ringdamper.nonlinear.receptance.Receptance` sums it; where it
-        has modal damping and ``ξ = 0`` (a forced response), ``z_r = ω_r² − u² + i u c_r`` with ``u = hω``,
-        and :class:`ringdamper.nonlinear.receptance.DampedReceptance` sums it."""
+        ``s = (hω)² + i hωξ``, and
+        :class:`ringdamper.nonlinear.harmonic_balance.receptance.Receptance` sums it; where it has modal
+        damping and ``ξ = 0`` (a forced response), ``z_r = ω_r² − u² + i u c_r`` with ``u = hω``, and
+        :class:`ringdamper.nonlinear.harmonic_balance.receptance.DampedReceptance` sums it."""
         receptance = self.receptances[h]
         if receptance is not None:
             s = _series_variable(h, omega, xi, isinstance(receptance, DampedReceptance))
@@ -505,7 +507,7 @@ class GaugeRotation:
 
 class CoreJacobian:
     """``∂r/∂y`` of one evaluation (module docstring, *Jacobian*): ``I + A_h K_c`` per harmonic plus
-    the explicit-mode blocks, with the gauge rows, as an operator (:mod:`ringdamper.nonlinear.jacobian`).
+    the explicit-mode blocks, with the gauge rows, as an operator (:mod:`ringdamper.nonlinear.solvers.jacobian`).
     :meth:`matvec` is the residual's linearisation applied to a vector (``O(p m)`` per harmonic, the
     receptance ``G_h`` is never formed); :meth:`toarray` forms the matrix (``O(p² m)``) for a
     factorisation."""
@@ -537,7 +539,7 @@ class CoreJacobian:
         return out
 
     def toarray(self, out: np.ndarray | None = None) -> np.ndarray:
-        """The matrix (Fortran order, :func:`ringdamper.nonlinear.jacobian.dense`), in ``out`` if
+        """The matrix (Fortran order, :func:`ringdamper.nonlinear.solvers.jacobian.dense`), in ``out`` if
         given (e.g. the core block of a bordered matrix)."""
         m = self.model
         p, kc, n_d = m.p, self.kc, m.n_d

@@ -3,19 +3,19 @@
     M q̈ + C q̇ + K q + Bᵀ λ(Bq) = Re(γ F̂_h e^{ihωt}),
 
 with structural modal damping ``C`` (ratio ζ_s, or the structure's ``C``), condensed as in
-:mod:`ringdamper.nonlinear.condensed` (ξ = 0). Unknowns ``z = [y, ω]``.
+:mod:`ringdamper.nonlinear.harmonic_balance.condensed` (ξ = 0). Unknowns ``z = [y, ω]``.
 
-The Jacobian is returned as an operator (:class:`ringdamper.nonlinear.condensed.CoreJacobian`
-bordered by the ω column, :mod:`ringdamper.nonlinear.jacobian`), as the EPMC's: Newton forms it
+The Jacobian is returned as an operator (:class:`ringdamper.nonlinear.harmonic_balance.condensed.CoreJacobian`
+bordered by the ω column, :mod:`ringdamper.nonlinear.solvers.jacobian`), as the EPMC's: Newton forms it
 when it factorises, and the continuation's tangents are solved by GMRES on the corrector's last LU
-(:class:`ringdamper.nonlinear.krylov.LaggedSolver`) instead of a factorisation each.
+(:class:`ringdamper.nonlinear.solvers.krylov.LaggedSolver`) instead of a factorisation each.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from ringdamper.nonlinear.condensed import CondensedHBM, CoreEval, GaugeState
-from ringdamper.nonlinear.jacobian import Evaluation, bordered
+from ringdamper.nonlinear.harmonic_balance.condensed import CondensedHBM, CoreEval, GaugeState
+from ringdamper.nonlinear.solvers.jacobian import Evaluation, bordered
 
 
 class ForcedProblem:
@@ -23,7 +23,7 @@ class ForcedProblem:
     continuation closes it) on the condensed ``model`` (fixed), in the solve's gauge state ``gauge``
     (default the model's initial one), which every evaluation, accepted point (:meth:`accept`) and
     failed step (:meth:`on_failure`) replaces by the state it returns, as in
-    :class:`ringdamper.nonlinear.epmc.EPMCProblem`."""
+    :class:`ringdamper.nonlinear.harmonic_balance.epmc.EPMCProblem`."""
 
     def __init__(self, model: CondensedHBM, gauge: GaugeState | None = None):
         if not model.forced:

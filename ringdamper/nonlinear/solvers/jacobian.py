@@ -1,11 +1,11 @@
 """Jacobians given as matrices or as operators, their bordering, and the evaluation a problem returns.
 
-A problem's ``fun(z, jacobian)`` (:func:`ringdamper.nonlinear.newton.newton`) returns an
+A problem's ``fun(z, jacobian)`` (:func:`ringdamper.nonlinear.solvers.newton.newton`) returns an
 :class:`Evaluation` (residual, Jacobian, trivial unknowns, core size, the problem's own payload). It
 may give its Jacobian as a dense array or as an operator with ``shape``, ``matvec(v)`` (the product ``J v``, without
 forming ``J``) and ``toarray(out=None)`` (``J`` formed on demand, into ``out`` if given). An
 operator lets the Newton solve with a lagged factorisation as preconditioner
-(:class:`ringdamper.nonlinear.krylov.LaggedSolver`) and form ``J`` only when that no longer converges.
+(:class:`ringdamper.nonlinear.solvers.krylov.LaggedSolver`) and form ``J`` only when that no longer converges.
 The continuation borders Jacobians with extra columns (``∂r/∂s``) and rows (arc-length hyperplane,
 amplitude and phase conditions): :func:`bordered` does that for both kinds, and
 :meth:`Evaluation.extended` for an evaluation (its residual and Jacobian together).
@@ -78,11 +78,11 @@ def bordered(J, columns=None, rows=None):
 
 @dataclass(frozen=True)
 class Evaluation:
-    """One evaluation of a system ``r(z) = 0`` for :func:`ringdamper.nonlinear.newton.newton` and the
+    """One evaluation of a system ``r(z) = 0`` for :func:`ringdamper.nonlinear.solvers.newton.newton` and the
     continuation drivers: residual ``r``; Jacobian ``J`` (array or operator; None when not requested);
     ``trivial``, the unknowns whose columns are unit vectors in the first ``n_core`` rows (eliminated
-    exactly by :class:`ringdamper.nonlinear.newton.Factorization`; None: none); ``payload``, the
-    problem's own evaluation (e.g. a :class:`ringdamper.nonlinear.condensed.CoreEval`), which the
+    exactly by :class:`ringdamper.nonlinear.solvers.newton.Factorization`; None: none); ``payload``, the
+    problem's own evaluation (e.g. a :class:`ringdamper.nonlinear.harmonic_balance.condensed.CoreEval`), which the
     solvers hand back with the solution."""
 
     r: np.ndarray

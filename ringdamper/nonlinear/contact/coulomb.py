@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ringdamper.nonlinear.play import play_operator
+from ringdamper.nonlinear.contact.play import play_operator
 
 #: Newton iterations on a trajectory before its pair is marched instead
 NEWTON_ITERATIONS = 30

@@ -16,10 +16,10 @@ an element must exert no force there.
   on the velocity ``u̇ = ω ∂u/∂τ``, hence on ω: the AFT also returns ``∂f_c/∂ω``, which the harmonic
   balance adds to its ω column, and :meth:`Element.velocity_jacobian` gives ``∂f_c/∂v_c'``, the
   velocity's own Jacobian, which Hill's stability adds to its damping
-  (:mod:`ringdamper.nonlinear.stability`).
+  (:mod:`ringdamper.nonlinear.harmonic_balance.stability`).
 
 :class:`Elements` gathers any number of them, of any kind, into the set the harmonic balance takes in
-place of the 3-D contact pairs (:class:`ringdamper.nonlinear.friction.FrictionContacts`): its ``B``
+place of the 3-D contact pairs (:class:`ringdamper.nonlinear.contact.friction.FrictionContacts`): its ``B``
 (:attr:`Elements.B`) gives each element three rows of local coordinates (the ``k`` of its ``w``, the
 others zero, which carry no force), and it answers the questions the analyses ask of the contacts
 (forces and Jacobian, static force, stuck stiffness, amplitude up to which the system stays linear).
@@ -30,9 +30,9 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
+from ringdamper.nonlinear.contact.friction import ContactAFT, dissipated_energy
+from ringdamper.nonlinear.contact.play import play_operator
 from ringdamper.nonlinear.fourier import Fourier
-from ringdamper.nonlinear.friction import ContactAFT, dissipated_energy
-from ringdamper.nonlinear.play import play_operator
 
 #: local coordinates an element may have (the rows each element gets in :attr:`Elements.B`)
 MAX_COORDINATES = 3
@@ -186,7 +186,7 @@ class Jenkins(Element):
     that slips at the force ``slip_force`` [N]. The slider follows the play operator
     ``s_k = clip(s_{k−1}, u_k − r, u_k + r)``, ``r = slip_force / kt``, from the static state
     ``s = 0``; ``∂s_k/∂u`` is that of the sample the slider value comes from
-    (:func:`ringdamper.nonlinear.play.play_operator`)."""
+    (:func:`ringdamper.nonlinear.contact.play.play_operator`)."""
 
     positive = ("kt",)
 
@@ -305,7 +305,7 @@ class Elements:
 
     def energy(self, d: np.ndarray, lam: np.ndarray) -> np.ndarray:
         """Energy each element dissipates per cycle [J], ``∮ f · du`` of its local coordinates ``d`` and
-        forces ``lam`` ``(npairs, 3, C)`` (:func:`ringdamper.nonlinear.friction.dissipated_energy`;
+        forces ``lam`` ``(npairs, 3, C)`` (:func:`ringdamper.nonlinear.contact.friction.dissipated_energy`;
         zero for the conservative elements, up to the AFT's discretisation)."""
         return dissipated_energy(d, lam)
 

@@ -4,7 +4,7 @@ past a fold in the parameter, :func:`natural_then_arclength`), after Allgower & 
 *Introduction to Numerical Continuation Methods* (2003), ch. 6 (step-length adaptation).
 
 Common rules. Tangent predictor, Newton corrector reusing the last factorisation while it
-contracts (:func:`ringdamper.nonlinear.newton.newton`). Every accepted point gets a fresh
+contracts (:func:`ringdamper.nonlinear.solvers.newton.newton`). Every accepted point gets a fresh
 Jacobian and its own unit tangent ``t``, measured in a scaled metric ``u`` (unknowns over their
 scales, see each driver). A corrected point ``u₁`` reached from the trusted point ``u₀`` (tangent
 ``t₀``) is *trusted* only if the geometry of the step fits one smooth branch
@@ -32,7 +32,7 @@ initial and maximum steps). A corrector is a failure once it has used
 :attr:`StepControl.corrector` fresh Jacobians without converging (fail fast: a smaller step is
 cheaper than a long Newton far from the branch), and so is one whose damped Newton step needs a
 damping ``λ ≤`` :attr:`StepControl.give_up_damping` (its predictor lies outside the corrector's
-region of contraction, see :func:`ringdamper.nonlinear.newton.newton`). ``jump_mask`` restricts
+region of contraction, see :func:`ringdamper.nonlinear.solvers.newton.newton`). ``jump_mask`` restricts
 the geometry to the unknowns that identify the branch (the EPMC leaves out the mean values, which
 move freely where the last contact holding a rigid-body motion lets go). Failures never raise:
 they end the run with a status (:class:`ringdamper.status.Status`). A natural step that ends
@@ -43,11 +43,11 @@ tolerance.
 Interface. A driver takes a *problem* and a :class:`StepControl` (every step setting, the corrector's
 tolerance and Jacobian budget included). :func:`natural` and :func:`natural_then_arclength` take a
 :class:`ParameterProblem` (``r(z, s) = 0``), :func:`arclength` a :class:`CurveProblem` (``r(x) = 0``,
-one equation fewer than unknowns); both return an :class:`ringdamper.nonlinear.jacobian.Evaluation`
+one equation fewer than unknowns); both return an :class:`ringdamper.nonlinear.solvers.jacobian.Evaluation`
 from ``fun`` and take the history hooks ``accept`` (every accepted point) and ``on_failure`` (after a
 failed corrector). :class:`ParameterFunctions` and :class:`CurveFunctions` make one of plain functions.
 A problem that carries state between evaluations (the gauge of the condensed HBM) holds it itself
-(:class:`ringdamper.nonlinear.epmc.EPMCProblem`): the drivers keep none.
+(:class:`ringdamper.nonlinear.harmonic_balance.epmc.EPMCProblem`): the drivers keep none.
 """
 from __future__ import annotations
 
@@ -56,9 +56,9 @@ from typing import Any, Callable, Protocol
 
 import numpy as np
 
-from ringdamper.nonlinear import krylov
-from ringdamper.nonlinear.jacobian import Evaluation, dense, is_operator
-from ringdamper.nonlinear.newton import Factorization, NewtonResult, linear_solver, newton
+from ringdamper.nonlinear.solvers import krylov
+from ringdamper.nonlinear.solvers.jacobian import Evaluation, dense, is_operator
+from ringdamper.nonlinear.solvers.newton import Factorization, NewtonResult, linear_solver, newton
 from ringdamper.status import Status
 
 # Weight, in the arc length of :func:`natural_then_arclength`, of the unknowns outside ``jump_mask``
@@ -88,10 +88,10 @@ class StepControl:
     corrector whose damped Newton step needs ``λ`` at or below it fails its step at once (module
     docstring; None: only :attr:`corrector` ends it). ``quasi_newton``: the correctors take good
     Broyden steps on their factorisation instead of chord steps
-    (:func:`ringdamper.nonlinear.newton.newton`).
+    (:func:`ringdamper.nonlinear.solvers.newton.newton`).
     ``tangent_rtol``: accuracy (scaled 2-norm) of the arc-length tangents that GMRES solves on a
-    lagged LU (:mod:`ringdamper.nonlinear.krylov`). ``tol``, ``max_iter``: Newton tolerance of a
-    converged point (scaled step, :func:`ringdamper.nonlinear.newton.newton`) and its fresh Jacobians.
+    lagged LU (:mod:`ringdamper.nonlinear.solvers.krylov`). ``tol``, ``max_iter``: Newton tolerance of a
+    converged point (scaled step, :func:`ringdamper.nonlinear.solvers.newton.newton`) and its fresh Jacobians.
     ``max_angle``: the geometry tests' angle (None: ``2·turn``, :meth:`angle_limit`); ``corner``: the
     turn test is waived below ``corner × minimum``. ``max_points``: arc-length points of a run (None:
     :meth:`arc_points`)."""
@@ -154,7 +154,7 @@ class StepControl:
 
     def adapt(self, ds: float, res, turn: float = 0.0) -> float:
         """New step from the corrector's effort (Jacobians + iterations / chord budget, see
-        :func:`ringdamper.nonlinear.newton.newton`: cheap chord iterations count little) and the
+        :func:`ringdamper.nonlinear.solvers.newton.newton`: cheap chord iterations count little) and the
         tangent turn ``turn`` [rad] of the accepted step."""
         factor = self.grow if res.effort <= self.easy else 1.0
         if res.effort >= self.hard:
@@ -191,7 +191,7 @@ class NaturalResult:
 
 class ParameterProblem(Protocol):
     """``r(z, s) = 0`` in the unknowns ``z`` and the scalar parameter ``s`` (:func:`natural`):
-    ``fun(z, s, jacobian)`` its :class:`ringdamper.nonlinear.jacobian.Evaluation`, ``dfun_ds(z, s)``
+    ``fun(z, s, jacobian)`` its :class:`ringdamper.nonlinear.solvers.jacobian.Evaluation`, ``dfun_ds(z, s)``
     ``∂r/∂s``, ``scale(z)`` the unknowns' convergence scales; ``accept(z, payload)`` is called on every
     accepted point (history updates, e.g. a gauge), ``on_failure()`` after a failed corrector (True:
     the problem changed, e.g. a rigid-body direction was pinned, and the same step is tried again);
@@ -323,7 +323,7 @@ def natural(problem: ParameterProblem, z0: np.ndarray, grid: np.ndarray, steps: 
 
     Tangents: at a grid value from the LU of its Jacobian, equilibrated, whose condition estimate the
     point keeps (:attr:`ContinuationPoint.condition`); between grid values by GMRES on the corrector's
-    last LU (:func:`ringdamper.nonlinear.newton.linear_solver`). Either way the next corrector starts
+    last LU (:func:`ringdamper.nonlinear.solvers.newton.linear_solver`). Either way the next corrector starts
     from the corrector's own chain of LUs, not from the grid value's exact one: handed on, that LU
     made correctors cheaper, the step control then grew the steps into the stretch where pairs lift
     off, and one ring of twenty (t036 of the paper design) took twice as long and lost its top point
@@ -414,9 +414,9 @@ def _natural_geometry(z0, s0, tangent0, z1, s1, tangent1, w, mask):
 
 def _natural_tangent(problem: ParameterProblem, z, s, previous, exact=False):
     """Solver of the Jacobian at ``(z, s)`` and the tangent ``dz/ds = −J⁻¹ ∂r/∂s``. The solver is
-    :func:`ringdamper.nonlinear.newton.linear_solver` on the factorisation of the solver ``previous``
+    :func:`ringdamper.nonlinear.solvers.newton.linear_solver` on the factorisation of the solver ``previous``
     or, with ``exact``, the LU of the Jacobian itself, equilibrated by the scales ``scale(z)``, which
-    gives the point its condition estimate (:meth:`ringdamper.nonlinear.newton.Factorization.condition`)."""
+    gives the point its condition estimate (:meth:`ringdamper.nonlinear.solvers.newton.Factorization.condition`)."""
     ev = problem.fun(z, s, True)
     if exact:
         fac = Factorization(dense(ev.J), ev.trivial, ev.n_core, overwrite=is_operator(ev.J),
@@ -555,7 +555,7 @@ def _turn_corner(step: _ArcStep, ds, largest):
 
 def _tangent(ev: Evaluation, direction_u, scale, previous, rtol=krylov.RTOL):
     """Solver of the Jacobian of ``ev`` bordered by ``direction_u / scale``
-    (:func:`ringdamper.nonlinear.newton.linear_solver`, on the factorisation of the solver ``previous``,
+    (:func:`ringdamper.nonlinear.solvers.newton.linear_solver`, on the factorisation of the solver ``previous``,
     if any, to ``rtol``) and the unit tangent in scaled variables: ``J (scale·t) = 0``, oriented along
     ``direction_u``."""
     e = np.zeros(ev.J.shape[1])

@@ -9,7 +9,7 @@ How far the preloaded pairs are from opening, per amplitude:
 pairs with ``min_t N_p/N0_p ≤ 0`` are the *lifting* pairs. Where pairs lift off, the unilateral
 law clips the normal force, which feeds harmonics above any truncation: on the default ring the
 top grid amplitude (42 lifting pairs) gives γ 15.6 N at H = 3 and 11.9 N at H = 5, while the
-highest-harmonic energy fraction (:mod:`ringdamper.nonlinear.truncation`) stays at 5e-5 there, below
+highest-harmonic energy fraction (:mod:`ringdamper.nonlinear.indicators.truncation`) stays at 5e-5 there, below
 its threshold. So lift-off is reported by itself (:func:`warn_separation`). A few lifting pairs are
 harmless: on the campaign's optimum pairs lift from |q_res,z| = 0.14 mm, and on the paper's optimum
 next to it H = 3 stays within 0.33 % of H = 7 on every quantity read off the backbone

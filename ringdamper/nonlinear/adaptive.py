@@ -32,6 +32,7 @@ from ringdamper.nonlinear.contact.friction import FrictionContacts
 from ringdamper.nonlinear.harmonic_balance.eebm import eebm
 from ringdamper.nonlinear.harmonic_balance.epmc import Backbone, continue_point, resolve_point
 from ringdamper.nonlinear.indicators.conditioning import backbone_conditions
+from ringdamper.nonlinear.indicators.harmonic_estimate import estimate_raise
 from ringdamper.nonlinear.indicators.separation import separation_indicators
 from ringdamper.nonlinear.indicators.truncation import THRESHOLD, highest_harmonic_fraction
 from ringdamper.status import usable_status
@@ -60,13 +61,15 @@ OUTPUTS = ("omega", "frequency", "zeta", "gamma", "phi", "q_res_peak", "q_res_h1
 class AdaptiveResult:
     """Outputs of every grid point at its own truncation: ``values`` (the :data:`OUTPUTS` arrays),
     ``reason`` per point, ``n_harmonics`` the H each point was solved at, ``resolved`` the number of
-    higher-H Newton solves and ``notes`` the points where one failed."""
+    higher-H Newton solves, ``notes`` the points where one failed and ``estimated`` the number of
+    error estimates (``estimate_flag``)."""
 
     values: dict
     reason: list
     n_harmonics: np.ndarray
     resolved: int
     notes: list
+    estimated: int = 0
 
 
 def backbone_outputs(backbone: Backbone, contacts: FrictionContacts, zeta_s: float) -> dict:
@@ -138,11 +141,15 @@ def _raise(current: Backbone, j: int, H: int, nt: int, tol: float, below: dict,
 
 def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, zeta_s: float,
                     tol: float = 1e-8, change_tol: float = CHANGE_TOLERANCE,
-                    max_arc_points: int | None = None) -> AdaptiveResult:
+                    max_arc_points: int | None = None, estimate_flag: float | None = None) -> AdaptiveResult:
     """Every point of ``backbone`` at the truncation the rule of the module doc picks (H₀ = the
     backbone's, steps of 2 up to ``H_max``; the structure must hold harmonics up to ``H_max``;
     ``max_arc_points``: arc-length points a continuation at the higher H may take past a fold, as in
-    :func:`ringdamper.nonlinear.harmonic_balance.epmc.epmc`)."""
+    :func:`ringdamper.nonlinear.harmonic_balance.epmc.epmc`). ``estimate_flag``: a watched point at H₀ is
+    first estimated (:func:`ringdamper.nonlinear.indicators.harmonic_estimate.estimate_raise`, to H₀ + 2)
+    and raised only if the estimated largest change exceeds this level; otherwise it keeps H₀ and its
+    solution untouched, and the estimate stands for its change from H₀ to H₀ + 2 in the slip onset rule
+    (None: no estimate)."""
     H0, nt0 = backbone.H, backbone.nt
     if H_max > backbone.model.structure.H_max:
         raise ValueError(f"H_max = {H_max} exceeds the {backbone.model.structure.H_max} harmonics of the "
@@ -151,7 +158,7 @@ def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, 
     values = {k: np.array(v, copy=True) for k, v in values.items()}
     reason = list(backbone.reason)
     used = np.full(backbone.alpha.size, H0)
-    notes, resolved = [], 0
+    notes, resolved, estimated = [], 0, 0
     below: dict = {}                    # H -> (backbone, index) of the grid point below, solved at H
     models: dict = {}                   # (H, nt) -> the problem at that truncation, built once
     usable = usable_status(values["status"])
@@ -165,6 +172,12 @@ def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, 
         onset = bool(slipping[i]) and onset_open
         first_change = 0.0
         while H + 2 <= H_max and needs_more_harmonics(point, previous, change_tol, onset):
+            if estimate_flag is not None and H == H0 and point["highest_harmonic_energy"] <= THRESHOLD:
+                first_change = estimate_raise(backbone, i, H + 2, time_samples(H + 2, H0, nt0), zeta_s,
+                                              models=models).largest
+                estimated += 1
+                if first_change <= estimate_flag:
+                    break
             higher, why = _raise(current, j, H + 2, time_samples(H + 2, H0, nt0), tol, below,
                                  backbone.alpha[i], max_arc_points, models)
             resolved += 1
@@ -188,4 +201,5 @@ def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, 
             onset_open = bool(stuck[i]) or (onset and first_change > change_tol)
     for note in notes:
         log.warning("adaptive harmonics: %s", note)
-    return AdaptiveResult(values=values, reason=reason, n_harmonics=used, resolved=resolved, notes=notes)
+    return AdaptiveResult(values=values, reason=reason, n_harmonics=used, resolved=resolved, notes=notes,
+                          estimated=estimated)

@@ -118,3 +118,32 @@ def test_bad_truncation_and_method_are_named():
         estimate_raise(bb, 0, 7, 224, ZETA_S)
     with pytest.raises(ValueError, match="method: expected one of"):
         estimate_raise(bb, 0, 5, 160, ZETA_S, method="jacobi")
+
+
+def test_estimate_gated_adaptive_pass_keeps_quiet_points_bitwise_and_raises_the_flagged_ones():
+    """The preload family (a preloaded pair that lifts off at the top of the grid) adapted from H = 3 up to
+    7 with the estimate gating the first raise of each watched point (``estimate_flag`` 0.3 %): the points
+    it keeps at H = 3 carry the H = 3 continuation's outputs bitwise, some watched points are kept, the
+    raised ones equal those of the pass without the estimate (to the Newton tolerance), and every point is
+    within 1 % of H = 7 on ω, γ and |q_res,z| where fixed H = 3 is not."""
+    from ringdamper.nonlinear.adaptive import OUTPUTS, adapt_harmonics, backbone_outputs
+
+    p = FAMILIES["preload"]
+    st, contacts = separating_oscillator(p["N0"], p["gap"], 7)
+    base = epmc(st, contacts, GAP_ALPHA, H=3, nt=96, tol=1e-10)
+    plain = adapt_harmonics(base, contacts, 7, ZETA_S, tol=1e-10)
+    gated = adapt_harmonics(base, contacts, 7, ZETA_S, tol=1e-10, estimate_flag=0.003)
+    at_base = backbone_outputs(base, contacts, ZETA_S)
+    kept = gated.n_harmonics == 3
+    assert gated.estimated >= 5 and gated.resolved < plain.resolved
+    assert np.sum(kept & (plain.n_harmonics > 3)) >= 2                  # watched points the estimate passed
+    for k in OUTPUTS:
+        assert np.array_equal(gated.values[k][kept], at_base[k][kept], equal_nan=True), k
+    raised = ~kept
+    assert raised.sum() >= 4 and np.all(plain.n_harmonics[raised] > 3)
+    for k in FOUR:
+        np.testing.assert_allclose(gated.values[k][raised], plain.values[k][raised], rtol=1e-6)
+    ref = backbone_outputs(epmc(st, contacts, GAP_ALPHA, H=7, nt=224, tol=1e-10), contacts, ZETA_S)
+    error = np.max([np.abs(gated.values[k] / ref[k] - 1) for k in ("omega", "gamma", "q_res_peak")])
+    fixed = np.max([np.abs(at_base[k] / ref[k] - 1) for k in ("omega", "gamma", "q_res_peak")])
+    assert error < 0.01 < fixed, (error, fixed)

@@ -122,17 +122,17 @@ def test_bad_truncation_and_method_are_named():
 
 def test_estimate_gated_adaptive_pass_keeps_quiet_points_bitwise_and_raises_the_flagged_ones():
     """The preload family (a preloaded pair that lifts off at the top of the grid) adapted from H = 3 up to
-    7 with the estimate gating the first raise of each watched point (``estimate_flag`` 0.3 %): the points
+    7 with the estimate gating the first raise of each watched point (``ESTIMATE_FLAG``, 0.3 %): the points
     it keeps at H = 3 carry the H = 3 continuation's outputs bitwise, some watched points are kept, the
     raised ones equal those of the pass without the estimate (to the Newton tolerance), and every point is
     within 1 % of H = 7 on ω, γ and |q_res,z| where fixed H = 3 is not."""
-    from ringdamper.nonlinear.adaptive import OUTPUTS, adapt_harmonics, backbone_outputs
+    from ringdamper.nonlinear.adaptive import ESTIMATE_FLAG, OUTPUTS, adapt_harmonics, backbone_outputs
 
     p = FAMILIES["preload"]
     st, contacts = separating_oscillator(p["N0"], p["gap"], 7)
     base = epmc(st, contacts, GAP_ALPHA, H=3, nt=96, tol=1e-10)
     plain = adapt_harmonics(base, contacts, 7, ZETA_S, tol=1e-10)
-    gated = adapt_harmonics(base, contacts, 7, ZETA_S, tol=1e-10, estimate_flag=0.003)
+    gated = adapt_harmonics(base, contacts, 7, ZETA_S, tol=1e-10, estimate_flag=ESTIMATE_FLAG)
     at_base = backbone_outputs(base, contacts, ZETA_S)
     kept = gated.n_harmonics == 3
     assert gated.estimated >= 5 and gated.resolved < plain.resolved

@@ -47,8 +47,8 @@ CHANGE_TOLERANCE = 0.01
 #: the stick limit (zero to rounding), ζ ≥ 1.5e-8 at the 846 slipping ones
 SLIP_ZETA = 1e-9
 
-#: estimated largest change (:func:`ringdamper.nonlinear.harmonic_estimate.estimate_raise`, H to H + 2) above
-#: which a watched point is raised when the estimate gates the raise (``adapt_harmonics(...,
+#: estimated largest change (:func:`ringdamper.nonlinear.indicators.harmonic_estimate.estimate_raise`, H to
+#: H + 2) above which a watched point is raised when the estimate gates the raise (``adapt_harmonics(...,
 #: estimate_flag=ESTIMATE_FLAG)``): :data:`CHANGE_TOLERANCE`/3. The estimate was 0.56–1.5× the solved
 #: change wherever that exceeds 0.1 % on the default ring, the gap family and a one-DoF Jenkins oscillator
 #: (docs/investigations/2026-12-02-harmonic-error-estimate.md)

@@ -140,7 +140,7 @@ def dataset(tables: dict, alphas: dict) -> xr.Dataset:
     ds = xr.Dataset()
     for system, table in tables.items():
         dim = f"{system}_alpha"
-        ds[dim] = xr.DataArray(alphas[system], dims=dim, attrs={"units": "kg^0.5 m" if system == "ring" else "m",
+        ds[dim] = xr.DataArray(alphas[system], dims=dim, attrs={"units": "kg^0.5 m",
                                                                 "long_name": f"{system}: modal amplitude"})
         for name, v in table.items():
             what = name.split("_H")[0].replace("_", " ")

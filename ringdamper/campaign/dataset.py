@@ -28,9 +28,10 @@ STATUS_NAMES = {int(s): s.name.lower().replace("_", " ") for s in Status} | {CHA
 # dnnm.nc scalars kept in the dataset (optional ones are NaN where a file lacks them)
 SCALARS = ("omega0", "frequency", "zeta", "gamma", "phi", "q_res_z", "q_res_z_h1", "rigid_body_imbalance",
            "highest_harmonic_energy", "normal_force_ratio_min", "lifting_pairs", "n_harmonics",
-           "jacobian_condition", "ill_conditioned")
+           "jacobian_condition", "ill_conditioned", "truncation_flag", "truncation_error")
 OPTIONAL = ("rigid_body_imbalance", "q_res_z_h1", "highest_harmonic_energy", "normal_force_ratio_min",
-            "lifting_pairs", "n_harmonics", "jacobian_condition", "ill_conditioned")
+            "lifting_pairs", "n_harmonics", "jacobian_condition", "ill_conditioned", "truncation_flag",
+            "truncation_error")
 # the outputs the surrogates model and that must be finite at a usable point
 SURROGATE_OUTPUTS = ("q_res_z", "omega0", "zeta", "gamma")
 
@@ -111,6 +112,25 @@ def aggregate(samples: pd.DataFrame, paths: dict) -> xr.Dataset:
         coords[f"kappa{i}"] = variable("geometry", samples[f"kappa{i}"].to_numpy(float), "1",
                                        f"normalised shape parameter kappa{i}")
     return xr.Dataset(data, coords=coords, attrs={"usable_status": list(USABLE_STATUS)})
+
+
+def flagged_truncations(ds: xr.Dataset) -> list[str]:
+    """One line per geometry with points whose harmonic raise stopped (``truncation_flag`` 1 over its LU
+    budget, 2 failed; docs/nonlinear_core.md §4.5): its gid and split, the count of each, their
+    amplitudes and the largest estimated truncation error. [] where no point is flagged or the dataset
+    has no flags (files from before the flag)."""
+    if "truncation_flag" not in ds:
+        return []
+    flag, error, alpha = ds.truncation_flag.values, ds.truncation_error.values, ds.amplitude.values
+    lines = []
+    for i in np.flatnonzero(np.nan_to_num(flag).any(axis=1)):
+        hit = np.flatnonzero(np.nan_to_num(flag[i]) > 0)
+        over, failed = int(np.sum(flag[i] == 1)), int(np.sum(flag[i] == 2))
+        lines.append(f"{ds.geometry.values[i]} ({ds.split.values[i]}): {hit.size} point(s) keep a lower "
+                     f"harmonic truncation ({over} raise(s) over budget, {failed} failed) at alpha = "
+                     + ", ".join(f"{a:.3g}" for a in alpha[hit])
+                     + f"; estimated truncation error up to {np.nanmax(error[i, hit]):.2g}")
+    return lines
 
 
 def kappa(ds: xr.Dataset) -> np.ndarray:

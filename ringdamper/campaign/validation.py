@@ -22,7 +22,7 @@ import numpy as np
 import xarray as xr
 
 from ..io import variable
-from .dataset import kappa
+from .dataset import flagged_truncations, kappa
 from .exploration import BACKBONE_OUTPUTS, backbones
 from .kriging import BAND_PROBABILITY, CONSTANT_RTOL, SIGMA_BAND
 
@@ -69,7 +69,8 @@ def loo_pairs(fit: xr.Dataset, name: str):
 def validate(fit: xr.Dataset, surrogate, dataset: xr.Dataset, mask: xr.DataArray) -> xr.Dataset:
     """validation.nc: per output the metrics on the validation split and Q^2 (leave-one-out on the
     training split, from kriging.nc ``fit``), with the validation predictions of ``surrogate`` (median,
-    spread, band) for the figures."""
+    spread, band) for the figures, the validation points' ``truncation_flag`` and the attribute
+    ``flagged_truncations`` naming every ring's flagged points (:func:`flagged_truncations`)."""
     val = (dataset.split == "validation").values
     vset, vmask = dataset.isel(geometry=val), mask.isel(geometry=val)
     bb = backbones(surrogate, kappa(vset))
@@ -121,7 +122,11 @@ def validate(fit: xr.Dataset, surrogate, dataset: xr.Dataset, mask: xr.DataArray
               "amplitude": variable("amplitude", dataset.amplitude.values, "kg0.5 m", "modal amplitude alpha")}
     for i in (1, 2, 3):
         coords[f"kappa{i}"] = variable("geometry", vset[f"kappa{i}"].values, "1", f"shape parameter kappa{i}")
-    return xr.Dataset(data, coords=coords, attrs={"sigma_band": SIGMA_BAND, "band_probability": BAND_PROBABILITY})
+    if "truncation_flag" in vset:
+        data["truncation_flag"] = variable(("geometry", "amplitude"), vset.truncation_flag.values, "1",
+                                           vset.truncation_flag.attrs["long_name"])
+    return xr.Dataset(data, coords=coords, attrs={"sigma_band": SIGMA_BAND, "band_probability": BAND_PROBABILITY,
+                                                  "flagged_truncations": "; ".join(flagged_truncations(dataset))})
 
 
 def named_gids(dataset: xr.Dataset, cases, tol: float = 1e-9) -> list:

@@ -17,8 +17,11 @@ can stay far below its threshold where H₀ is off: by 34 % in ζ at the default
 lift-off does not vanish as H grows (the clipped normal force feeds every harmonic), and by 2.7 % at its
 first slipping point, where a short slip event of the period has harmonics that the displacements
 hardly show (ε₃ = 7e-7). There the measure is how much the point moves.
-A point whose indicators are quiet keeps H₀ and its continuation solution untouched. A higher-H
-Newton that fails keeps the last converged truncation and says so in the point's reason. Every
+A point whose indicators are quiet keeps H₀ and its continuation solution untouched. A raise has a
+hard budget of LU factorisations (:mod:`ringdamper.nonlinear.solvers.budget`). A raise that fails, or
+runs past its budget, stops there: the point keeps the last converged truncation, says so in its
+reason, and gets a truncation flag (:data:`TRUNCATION_FLAGS`) and the estimated error of that
+truncation (:func:`ringdamper.nonlinear.indicators.harmonic_estimate.estimate_raise` to H + 2). Every
 output of a point (backbone, E-EBM, indicators, status) comes from its final truncation.
 """
 from __future__ import annotations
@@ -35,6 +38,7 @@ from ringdamper.nonlinear.indicators.conditioning import backbone_conditions
 from ringdamper.nonlinear.indicators.harmonic_estimate import estimate_raise
 from ringdamper.nonlinear.indicators.separation import separation_indicators
 from ringdamper.nonlinear.indicators.truncation import THRESHOLD, highest_harmonic_fraction
+from ringdamper.nonlinear.solvers.budget import LUBudgetExceeded, lu_budget
 from ringdamper.status import usable_status
 
 log = logging.getLogger(__name__)
@@ -58,6 +62,14 @@ ESTIMATE_FLAG = CHANGE_TOLERANCE / 3
 #: ring the converging ones take at most 6
 RAISE_MAX_ITER = 8
 
+#: LU factorisations a raise of one point by 2 harmonics may make (``dnnm.raise_budget_lus``'s default):
+#: above its two Newton starts (2 × :data:`RAISE_MAX_ITER`) and a continuation from the point below
+#: at ``ARC_POINTS`` = 100 arc points of :mod:`ringdamper.nonlinear.stage`, a few LUs each
+RAISE_BUDGET_LUS = 5000
+
+#: values of a point's truncation flag (``truncation_flag`` of dnnm.nc)
+TRUNCATION_FLAGS = {0: "converged in H or not raised", 1: "raise over its LU budget", 2: "raise failed"}
+
 #: the outputs of a backbone point, per amplitude (arrays on the first axis)
 OUTPUTS = ("omega", "frequency", "zeta", "gamma", "phi", "q_res_peak", "q_res_h1", "energy_dissipated",
            "e_damp", "drift", "highest_harmonic_energy", "normal_force_ratio_min", "lifting_pairs",
@@ -69,7 +81,9 @@ class AdaptiveResult:
     """Outputs of every grid point at its own truncation: ``values`` (the :data:`OUTPUTS` arrays),
     ``reason`` per point, ``n_harmonics`` the H each point was solved at, ``resolved`` the number of
     higher-H Newton solves, ``notes`` the points where one failed and ``estimated`` the number of
-    error estimates (``estimate_flag``)."""
+    error estimates (``estimate_flag``). ``values`` also holds ``truncation_flag``
+    (:data:`TRUNCATION_FLAGS`) and ``truncation_error``: the estimated largest relative change of ω,
+    ζ, γ and |q_res,z| from the kept H to H + 2 at a flagged point, NaN at the others."""
 
     values: dict
     reason: list
@@ -146,9 +160,34 @@ def _raise(current: Backbone, j: int, H: int, nt: int, tol: float, below: dict,
     return higher, f"{why}; {why_below}" if higher is None else ""
 
 
+def _bounded_raise(current: Backbone, j: int, H: int, nt: int, tol: float, below: dict, alpha: float,
+                   max_arc_points: int | None, models: dict,
+                   budget: int | None) -> tuple[Backbone | None, str, int]:
+    """:func:`_raise` within an LU budget of ``budget`` factorisations: ``(higher, why, flag)``, ``flag``
+    the point's :data:`TRUNCATION_FLAGS` value should it keep the lower truncation (1 over budget, 2
+    failed)."""
+    try:
+        with lu_budget(budget):
+            higher, why = _raise(current, j, H, nt, tol, below, alpha, max_arc_points, models)
+    except LUBudgetExceeded as err:
+        return None, f"raise to H = {H}: {err}", 1
+    return higher, why, 2
+
+
+def _kept_error(current: Backbone, j: int, H_to: int, nt: int, zeta_s: float, models: dict) -> float:
+    """Estimated truncation error of point ``j`` of ``current`` at its H: the largest relative change
+    :func:`ringdamper.nonlinear.indicators.harmonic_estimate.estimate_raise` gives for raising it to
+    ``H_to`` (inf where the estimate's linear systems are singular)."""
+    try:
+        return float(estimate_raise(current, j, H_to, nt, zeta_s, models=models).largest)
+    except np.linalg.LinAlgError:
+        return np.inf
+
+
 def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, zeta_s: float,
                     tol: float = 1e-8, change_tol: float = CHANGE_TOLERANCE,
-                    max_arc_points: int | None = None, estimate_flag: float | None = None) -> AdaptiveResult:
+                    max_arc_points: int | None = None, estimate_flag: float | None = None,
+                    raise_budget_lus: int | None = RAISE_BUDGET_LUS) -> AdaptiveResult:
     """Every point of ``backbone`` at the truncation the rule of the module doc picks (H₀ = the
     backbone's, steps of 2 up to ``H_max``; the structure must hold harmonics up to ``H_max``;
     ``max_arc_points``: arc-length points a continuation at the higher H may take past a fold, as in
@@ -156,13 +195,15 @@ def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, 
     first estimated (:func:`ringdamper.nonlinear.indicators.harmonic_estimate.estimate_raise`, to H₀ + 2)
     and raised only if the estimated largest change exceeds this level; otherwise it keeps H₀ and its
     solution untouched, and the estimate stands for its change from H₀ to H₀ + 2 in the slip onset rule
-    (None: no estimate)."""
+    (None: no estimate). ``raise_budget_lus``: LU factorisations each raise may make (None: no limit)."""
     H0, nt0 = backbone.H, backbone.nt
     if H_max > backbone.model.structure.H_max:
         raise ValueError(f"H_max = {H_max} exceeds the {backbone.model.structure.H_max} harmonics of the "
                          "structure")
     values = backbone_outputs(backbone, contacts, zeta_s)
     values = {k: np.array(v, copy=True) for k, v in values.items()}
+    values["truncation_flag"] = np.zeros(backbone.alpha.size, np.int8)
+    values["truncation_error"] = np.full(backbone.alpha.size, np.nan)
     reason = list(backbone.reason)
     used = np.full(backbone.alpha.size, H0)
     notes, resolved, estimated = [], 0, 0
@@ -185,12 +226,15 @@ def adapt_harmonics(backbone: Backbone, contacts: FrictionContacts, H_max: int, 
                 estimated += 1
                 if first_change <= estimate_flag:
                     break
-            higher, why = _raise(current, j, H + 2, time_samples(H + 2, H0, nt0), tol, below,
-                                 backbone.alpha[i], max_arc_points, models)
+            nt = time_samples(H + 2, H0, nt0)
+            higher, why, flag = _bounded_raise(current, j, H + 2, nt, tol, below, backbone.alpha[i],
+                                               max_arc_points, models, raise_budget_lus)
             resolved += 1
             if higher is None:
                 notes.append(f"alpha = {backbone.alpha[i]:.4g}: {why}; kept H = {H}")
                 reason[i] = "; ".join(r for r in (reason[i], notes[-1]) if r)
+                values["truncation_flag"][i] = flag
+                values["truncation_error"][i] = _kept_error(current, j, H + 2, nt, zeta_s, models)
                 break
             solved[H + 2] = (higher, 0)
             out = backbone_outputs(higher, contacts, zeta_s)

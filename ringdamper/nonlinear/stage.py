@@ -17,7 +17,7 @@ import numpy as np
 import xarray as xr
 
 from ringdamper.io import declared_dataset, nan_values, variable
-from ringdamper.nonlinear.adaptive import adapt_harmonics
+from ringdamper.nonlinear.adaptive import RAISE_BUDGET_LUS, TRUNCATION_FLAGS, adapt_harmonics
 from ringdamper.nonlinear.contact.friction import FrictionContacts
 from ringdamper.nonlinear.harmonic_balance.eebm import eebm
 from ringdamper.nonlinear.harmonic_balance.epmc import epmc
@@ -123,7 +123,8 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
     backbone, contacts, _, omega_stuck = solve_backbone(reduced, static, config, target_hz, alpha, H0,
                                                         cfg["n_time_samples"], structure_harmonics=H_max)
     adaptive = adapt_harmonics(backbone, contacts, H_max, cfg["structural_damping_ratio"],
-                               tol=cfg.get("continuation_tolerance", 1e-8), max_arc_points=ARC_POINTS)
+                               tol=cfg.get("continuation_tolerance", 1e-8), max_arc_points=ARC_POINTS,
+                               raise_budget_lus=raise_budget(cfg))
     out = adaptive.values
     warn_truncation(out["highest_harmonic_energy"], alpha)
     warn_separation(out["lifting_pairs"], alpha, int(adaptive.n_harmonics.max()))
@@ -134,12 +135,14 @@ def run_dnnm(reduced: xr.Dataset, static: xr.Dataset, config: dict, target_hz: f
               "highest_harmonic_energy": out["highest_harmonic_energy"],
               "normal_force_ratio_min": out["normal_force_ratio_min"], "lifting_pairs": out["lifting_pairs"],
               "n_harmonics": adaptive.n_harmonics.astype(float), "jacobian_condition": out["jacobian_condition"],
-              "ill_conditioned": (out["jacobian_condition"] > ILL_CONDITIONED).astype(np.int8)}
+              "ill_conditioned": (out["jacobian_condition"] > ILL_CONDITIONED).astype(np.int8),
+              "truncation_flag": out["truncation_flag"], "truncation_error": out["truncation_error"]}
     attrs = {"kappa": np.asarray(static.attrs["kappa"], dtype=float), "n_harmonics": H0,
              "max_harmonics": H_max, "n_time_samples": cfg["n_time_samples"],
              "friction_law": cfg["friction_law"], "structural_damping_ratio": cfg["structural_damping_ratio"],
              "omega_stuck": omega_stuck, "omega_stuck_default": omega_stuck_default,
-             "harmonics_resolved": adaptive.resolved, "harmonics_failed": "; ".join(adaptive.notes),
+             "raise_budget_lus": raise_budget(cfg), "harmonics_resolved": adaptive.resolved,
+             "harmonics_failed": "; ".join(adaptive.notes),
              "unsolved_reason": first_unsolved_reason(alpha, out["status"], adaptive.reason),
              "wall_time_s": time.perf_counter() - start}
     return dnnm_dataset(alpha, contacts.npairs, values, out["status"], attrs)
@@ -159,6 +162,12 @@ def max_harmonics(dnnm_cfg: dict) -> int:
     """The largest truncation of the adaptive harmonics, ``dnnm.max_harmonics`` (default: the base
     ``dnnm.n_harmonics``, no adaptation)."""
     return int(dnnm_cfg.get("max_harmonics", dnnm_cfg["n_harmonics"]))
+
+
+def raise_budget(dnnm_cfg: dict) -> int:
+    """LU factorisations a point's raise by 2 harmonics may make, ``dnnm.raise_budget_lus`` (default
+    :data:`ringdamper.nonlinear.adaptive.RAISE_BUDGET_LUS`)."""
+    return int(dnnm_cfg.get("raise_budget_lus", RAISE_BUDGET_LUS))
 
 
 #: The variables of dnnm.nc besides ``status``: name -> (dims, units, long_name). The one declaration
@@ -197,6 +206,12 @@ DNNM_VARIABLES = {
         "amplitude", "1",
         f"1 where jacobian_condition > {ILL_CONDITIONED:.3g} = 1e-6 / (2 eps): rounding (the BLAS kernel) may move "
         "the point by more than 1e-6 relative"),
+    "truncation_flag": ("amplitude", "1",
+                        "truncation of the point: " + ", ".join(f"{k} {v}" for k, v in TRUNCATION_FLAGS.items())
+                        + " (dnnm.raise_budget_lus; the point keeps its last converged H)"),
+    "truncation_error": ("amplitude", "1",
+                         "estimated largest relative change of omega, zeta, gamma and q_res_z from raising a "
+                         "flagged point's kept H by 2 (NaN where truncation_flag is 0)"),
 }
 STATUS_MEANING = ("0 converged, 1 no convergence, 2 not reached, 3 converged with the ring's mean "
                   "rigid-body equilibrium unbalanced (ratcheting), 4 budget, 99 the geometry's chain failed "

@@ -96,3 +96,22 @@ def test_a_truncated_dnnm_file_is_refused_naming_it(tmp_path):
     paths["t004"].write_bytes(data[: len(data) // 3])
     with pytest.raises(ValueError, match=r"t004/dnnm\.nc: truncated or not a NetCDF file"):
         aggregate(samples, paths)
+
+
+def test_flagged_truncations_name_each_ring_its_points_and_error(tmp_path):
+    """A ring whose raises stopped at three amplitudes (two over budget, one failed) is named with its
+    counts, amplitudes and largest estimated error; its points stay usable; unflagged rings are not named."""
+    from ringdamper.campaign.dataset import flagged_truncations
+
+    samples = design(10, 2)
+    flagged = dnnm_dataset(samples.iloc[4, 1:4].to_numpy(float), ALPHA)
+    flagged["truncation_flag"].values[:] = [0] * 5 + [1, 2, 1]
+    flagged["truncation_error"].values[:] = [np.nan] * 5 + [2e-3, 0.04, 7e-3]
+    ds = aggregate(samples, write_campaign(tmp_path, samples, ALPHA, {"t004": flagged}))
+    assert ds.truncation_flag.attrs["units"] == "1" and "over its LU budget" in ds.truncation_flag.attrs["long_name"]
+    lines = flagged_truncations(ds)
+    assert len(lines) == 1 and lines[0].startswith("t004 (training): 3 point(s)")
+    assert "(2 raise(s) over budget, 1 failed)" in lines[0] and "up to 0.04" in lines[0]
+    assert ", ".join(f"{a:.3g}" for a in ALPHA[5:]) in lines[0]
+    assert bool(usable_mask(ds).sel(geometry="t004").all())
+    assert flagged_truncations(ds.drop_vars(["truncation_flag", "truncation_error"])) == []

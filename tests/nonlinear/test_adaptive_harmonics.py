@@ -115,3 +115,62 @@ def test_higher_h_continuation_takes_the_arc_budget_given(gap, monkeypatch):
     adaptive = adapt_harmonics(base, contacts, 5, ZETA_S, tol=TOL, max_arc_points=7)
     assert budgets and set(budgets) == {7}
     assert np.sum(adaptive.n_harmonics == 5) == len(budgets) + 1       # each of them solved at H = 5
+
+
+def test_raise_over_its_lu_budget_keeps_the_lower_truncation_flagged_with_its_error(gap):
+    """A budget of one LU per raise on raises that need more (every converging raise of the gap family
+    takes one LU, so the Newton tolerance is one no iterate meets): every raise stops at its second LU,
+    each point keeps H₀ and its outputs bitwise, and carries flag 1 and a finite estimated error, the
+    estimate of raising it to H₀ + 2 at H₀, which exceeds the estimate's flag level (0.3 %) wherever
+    the solved raise (default budget, tolerance 1e-10) moves ω, γ or |q_res,z| by more than 1 %; the
+    other points have flag 0 and no error."""
+    from ringdamper.nonlinear.adaptive import ESTIMATE_FLAG, time_samples
+    from ringdamper.nonlinear.indicators.harmonic_estimate import estimate_raise
+
+    ref, base, contacts, solved = gap
+    at_base = backbone_outputs(base, contacts, ZETA_S)
+    adaptive = adapt_harmonics(base, contacts, 7, ZETA_S, tol=1e-300, raise_budget_lus=1)
+    flag, err = adaptive.values["truncation_flag"], adaptive.values["truncation_error"]
+    flagged = np.flatnonzero(flag)
+    assert np.all(adaptive.n_harmonics == 3) and len(flagged) == len(adaptive.notes) >= 5
+    assert set(flag[flagged]) == {1} and np.array_equal(flagged, np.flatnonzero(solved.n_harmonics > 3))
+    for k in OUTPUTS:
+        assert np.array_equal(adaptive.values[k], at_base[k], equal_nan=True), k
+    assert np.all(np.isfinite(err[flagged])) and np.all(np.isnan(np.delete(err, flagged)))
+    assert all("LU budget of 1 factorisations exceeded" in adaptive.reason[i] for i in flagged)
+    nt = time_samples(5, 3, 96)
+    assert all(err[i] == estimate_raise(base, i, 5, nt, ZETA_S).largest for i in flagged)
+    moved = [max(abs(solved.values[k][i] / at_base[k][i] - 1) for k in ("omega", "gamma", "q_res_peak"))
+             for i in flagged]                          # what the solved raise changed (default budget)
+    assert np.sum(np.array(moved) > 0.01) >= 3
+    assert np.all(err[flagged][np.array(moved) > 0.01] > ESTIMATE_FLAG)
+
+
+def test_default_raise_budget_leaves_the_adaptive_result_unchanged(gap):
+    """The default budget (RAISE_BUDGET_LUS) stops no raise of the gap family: every output and
+    truncation equals that of an unbounded pass bitwise, and no point is flagged."""
+    ref, base, contacts, bounded = gap
+    unbounded = adapt_harmonics(base, contacts, 7, ZETA_S, tol=TOL, raise_budget_lus=None)
+    assert np.array_equal(bounded.n_harmonics, unbounded.n_harmonics)
+    for k in OUTPUTS:
+        assert np.array_equal(bounded.values[k], unbounded.values[k], equal_nan=True), k
+    assert not np.any(bounded.values["truncation_flag"]) and np.all(np.isnan(bounded.values["truncation_error"]))
+
+
+def test_failed_raise_is_flagged_with_its_error(gap):
+    """Without a budget, a raise whose Newton cannot converge (tolerance 1e-300) runs through every start
+    and is flagged 2, with a finite error."""
+    ref, base, contacts, _ = gap
+    adaptive = adapt_harmonics(base, contacts, 5, ZETA_S, tol=1e-300, raise_budget_lus=None)
+    flagged = np.flatnonzero(adaptive.values["truncation_flag"])
+    assert len(flagged) == len(adaptive.notes) > 0
+    assert set(adaptive.values["truncation_flag"][flagged]) == {2}
+    assert np.all(np.isfinite(adaptive.values["truncation_error"][flagged]))
+
+
+def test_raise_budget_must_be_a_positive_integer():
+    config = load_config()
+    for bad in (0, 2.5):
+        config["dnnm"]["raise_budget_lus"] = bad
+        with pytest.raises(ConfigError, match="dnnm.raise_budget_lus"):
+            validate_config(config)

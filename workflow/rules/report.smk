@@ -59,6 +59,7 @@ rule paper_comparison:
 rule report_tables:
     input:
         validation=f"{RESULTS}/surrogate/validation_metrics.csv",
+        dataset=f"{RESULTS}/campaign/dataset.nc",
         optimum=f"{RESULTS}/surrogate/optimum.yaml",
         sobol_global=f"{RESULTS}/sensitivity/sobol_global.nc",
         sobol_local=f"{RESULTS}/sensitivity/sobol_local.nc",

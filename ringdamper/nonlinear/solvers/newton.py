@@ -26,6 +26,7 @@ import scipy.linalg as sla
 from scipy.linalg.lapack import dgecon, dlange, get_lapack_funcs
 
 from ringdamper.nonlinear.solvers import krylov
+from ringdamper.nonlinear.solvers.budget import charge_lu
 from ringdamper.nonlinear.solvers.jacobian import dense, is_operator
 from ringdamper.nonlinear.solvers.krylov import LaggedSolver
 
@@ -42,6 +43,7 @@ class Factorization:
 
     def __init__(self, J: np.ndarray, trivial: np.ndarray | None, n_core: int, overwrite: bool = False,
                  scale: np.ndarray | None = None):
+        charge_lu()                                          # an open LU budget may stop the work here
         n = self.n = J.shape[0]
         T = np.zeros(n, bool) if trivial is None else np.r_[trivial, np.zeros(n - trivial.size, bool)]
         self.T, self.N = np.flatnonzero(T), np.flatnonzero(~T)

@@ -6,11 +6,12 @@ static fields); empty VTU files only when no mesh could be built."""
 
 from ringdamper.io import mesh_fields, write_netcdf, write_vtu
 from ringdamper.logs import to_file
+from ringdamper.reduction.superelement import superelement_path
 from ringdamper.static.stage import run_static
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = to_file(sm.log[0])
-ds, model, fields = run_static(sm.params.config, sm.params.kappa)
+ds, model, fields = run_static(sm.params.config, sm.params.kappa, superelement_path(sm.input))
 if model is None:
     for path in (sm.output.vtu, sm.output.mesh):
         open(path, "w").close()

@@ -173,14 +173,16 @@ def _contact_pairs(geometry, scalar_basis, nodes, node_body, left, right) -> Con
                         tributary_area=tributary_area)
 
 
-def build_model(geometry: SectorMesh, config: dict) -> SectorModel:
-    """Assemble K, M and every DoF set of the sector model."""
+def build_model(geometry: SectorMesh, config: dict, elements: np.ndarray | None = None) -> SectorModel:
+    """Assemble K, M and every DoF set of the sector model. With ``elements`` (element indices) the
+    basis, K and M (and every quantity assembled on ``model.basis``) cover only those elements; the
+    nodes, DoF numbering and DoF sets stay those of the whole sector."""
     order = config["mesh"]["element_order"]
     mat = config["material"]
-    scalar = Basis(geometry.mesh, ELEMENTS[order](), intorder=INTORDER[order])
+    scalar = Basis(geometry.mesh, ELEMENTS[order](), intorder=INTORDER[order], elements=elements)
     nodes = scalar.doflocs.T.copy()
     node_body = np.zeros(len(nodes), dtype=int)
-    node_body[np.unique(scalar.element_dofs[:, geometry.body == BODY_RING])] = BODY_RING
+    node_body[np.unique(scalar.dofs.element_dofs[:, geometry.body == BODY_RING])] = BODY_RING
     fixed = np.unique(scalar.get_dofs(_facets_within(geometry.mesh, geometry.sets["bore"])).all())
     left, right = _cyclic_nodes(nodes, node_body, geometry.half_angle)
     pairs = _contact_pairs(geometry, scalar, nodes, node_body, left, right)

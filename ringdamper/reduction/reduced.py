@@ -108,15 +108,20 @@ def reduce_harmonics(model: SectorModel, part: Partition, cb: CraigBampton, engi
         out.append(ReducedHarmonic(harmonic=int(h), nd=nodal_diameter(h, model.n_sectors, engine_order),
                                    sigma=sigma, K=ir.K, M=ir.M, n_physical=ir.n_physical,
                                    n_if=n_if, n_fi=cb.n_fi, size_mead=cm.size))
-    n = out[0].size
+    B, response = contact_operator(model, part, out[0].size)
+    return ReducedSector(partition=part, cb=cb, harmonics=out, B=B, response_index=response,
+                         n_sectors=model.n_sectors, engine_order=engine_order)
+
+
+def contact_operator(model: SectorModel, part: Partition, n: int) -> tuple[np.ndarray, int]:
+    """(B, response index): the stacked relative contact displacements of a reduced model of size n
+    whose first coordinates are ``part.physical``, and the coordinate of the tip Z DoF."""
     G = relative_displacement_operator(model)
     B = np.zeros((G.shape[0], n))
     B[:, :len(part.physical)] = G[:, part.physical].toarray()
     if abs(G[:, np.setdiff1d(np.arange(model.n_dofs), part.physical)]).sum() != 0:
         raise AssertionError("contact operator touches non-physical DoFs")
-    response = int(np.searchsorted(part.physical, model.response_dof()))
-    return ReducedSector(partition=part, cb=cb, harmonics=out, B=B, response_index=response,
-                         n_sectors=model.n_sectors, engine_order=engine_order)
+    return B, int(np.searchsorted(part.physical, model.response_dof()))
 
 
 # --- stuck contact -------------------------------------------------------------------------------

@@ -14,6 +14,8 @@ import xarray as xr
 from ringdamper.fem.model import build_model
 from ringdamper.geometry.sector import build_sector
 from ringdamper.reduction.reduced import modal_basis, reduce_sector, reduced_dataset
+from ringdamper.reduction.substructured import morph_model, reduce_on_superelement
+from ringdamper.reduction.superelement import load
 
 log = logging.getLogger(__name__)
 
@@ -24,17 +26,28 @@ def reduction_sizes(config: dict) -> dict:
     return {"n_fi": red["n_fixed_interface_modes"], "n_if": red["n_interface_modes"]}
 
 
-def run_reduced(config: dict, kappa) -> xr.Dataset:
-    """reduced.nc of geometry ``kappa``: harmonics 0..``reduction.n_harmonics``."""
+def _reduced_sector(config: dict, kappa, superelement):
+    """The reduced sector of ring ``kappa``: monolithic, or on the super-element file."""
+    counts = reduction_sizes(config)
+    eo = config["operation"]["engine_order"]
+    if superelement is None:
+        model = build_model(build_sector(config, kappa), config)
+        return reduce_sector(model, eo, n_harmonics=config["reduction"]["n_harmonics"], **counts)
+    se = load(superelement)
+    model, split = morph_model(config, kappa, se, superelement)
+    return reduce_on_superelement(model, split, se, eo, **counts)
+
+
+def run_reduced(config: dict, kappa, superelement=None) -> xr.Dataset:
+    """reduced.nc of geometry ``kappa``: harmonics 0..``reduction.n_harmonics``; with
+    ``superelement`` (a file of ``reduction.superelement``) on the fixed substructure."""
     t0 = time.perf_counter()
-    model = build_model(build_sector(config, kappa), config)
-    rs = reduce_sector(model, config["operation"]["engine_order"],
-                       n_harmonics=config["reduction"]["n_harmonics"], **reduction_sizes(config))
+    rs = _reduced_sector(config, kappa, superelement)
     bases = [modal_basis(rh, rs.B, rs.response_index) for rh in rs.harmonics]
+    stiffness = "linear elastic at rest (no prestress)"
     ds = reduced_dataset(rs, kappa, bases,
-                         attrs={"stiffness": "linear elastic at rest (no prestress)",
-                                "wall_time_s": time.perf_counter() - t0})
-    log.info("kappa=%s %s harmonics=0..%d dofs %s, %s", list(kappa), reduction_sizes(config),
-             config["reduction"]["n_harmonics"], rs.dof_counts,
-             ", ".join(f"{k} {v:.2f} s" for k, v in rs.timings.items()))
+                         attrs={"stiffness": stiffness, "wall_time_s": time.perf_counter() - t0,
+                                "substructure": "fixed part super-element" if superelement else "none"})
+    log.info("kappa=%s %s harmonics=0..%d dofs %s", list(kappa), reduction_sizes(config),
+             config["reduction"]["n_harmonics"], rs.dof_counts)
     return ds

@@ -85,6 +85,21 @@ def solve_static(model: SectorModel, config: dict, speed_rpm: float | None = Non
     return solve_problem(prob, config["static"]), prob
 
 
+def substructured_problem(model: SectorModel, split, se, config: dict,
+                          speed_rpm: float | None = None) -> StaticProblem:
+    """The ND-0 static problem of the morph zone ``model`` (``build_model(..., elements=)``) on the
+    static super-element ``se`` (``reduction.superelement``): the monolithic problem with the fixed
+    part condensed exactly, on the morph zone's independent coordinates."""
+    from ringdamper.reduction.substructured import coupled_static, sector_transform
+
+    speed = config["operation"]["speed_rpm"] if speed_rpm is None else speed_rpm
+    prob = static_problem(model, config, speed)
+    _, independent = sector_transform(model, 0.0)
+    prob.K, prob.f, keep = coupled_static(prob.K, prob.f, se, model, split, prob.T, independent)
+    prob.G, prob.T = prob.G[:, keep].tocsr(), prob.T[:, keep].tocsr()
+    return prob
+
+
 def solve_problem(prob: StaticProblem, settings: dict) -> StaticContactResult:
     """Solve an assembled problem with the ``static:`` settings (method, tolerance, max_iterations)."""
     return solve_static_contact(prob.K, prob.f, prob.G, prob.g0, prob.kn, prob.kt, method=settings["method"],
@@ -172,15 +187,45 @@ def static_fields(model: SectorModel, result: StaticContactResult | None = None,
     return {"displacement": u, "N0": n0, "gap": gap}
 
 
-def run_static(config: dict, kappa) -> tuple[xr.Dataset, SectorModel | None, dict | None]:
+def _ring_model(config: dict, kappa, superelement):
+    """(model, substructure): the whole sector's model, or with a super-element file the morph
+    zone's and (split, super-element)."""
+    if superelement is None:
+        return build_model(build_sector(config, kappa), config), None
+    from ringdamper.reduction.substructured import morph_model
+    from ringdamper.reduction.superelement import load
+
+    se = load(superelement)
+    model, split = morph_model(config, kappa, se, superelement)
+    return model, (split, se)
+
+
+def _solve(model: SectorModel, config: dict, substructure) -> tuple[StaticContactResult, StaticProblem]:
+    if substructure is None:
+        return solve_static(model, config)
+    prob = substructured_problem(model, *substructure, config)
+    return solve_problem(prob, config["static"]), prob
+
+
+def _morph_fields(fields: dict, model: SectorModel, split) -> dict:
+    """The displacement NaN outside the morph zone (the fixed part's interior is condensed)."""
+    outside = np.ones(len(model.nodes), dtype=bool)
+    outside[np.unique(model.basis.dofs.element_dofs[:, split.morph_elements])] = False
+    fields["displacement"][outside] = np.nan
+    return fields
+
+
+def run_static(config: dict, kappa, superelement=None) -> tuple[xr.Dataset, SectorModel | None, dict | None]:
     """The static stage of geometry ``kappa`` at the operating speed: (static.nc dataset, model,
-    static.vtu point fields). It never raises: a failure (meshing, assembly or solve) gives
+    static.vtu point fields), monolithic or, with ``superelement`` (a file of
+    ``reduction.superelement``), on the fixed substructure (the displacement field then covers the
+    morph zone only: NaN elsewhere). It never raises: a failure (meshing, assembly or solve) gives
     :func:`failed_static` (status 99 and the reason); the model and its fields, all NaN, when the mesh was
     built, else no model nor fields, so the campaign goes on."""
     model = None
     try:
-        model = build_model(build_sector(config, kappa), config)
-        result, prob = solve_static(model, config)
+        model, substructure = _ring_model(config, kappa, superelement)
+        result, prob = _solve(model, config, substructure)
     except Exception as err:  # a failed geometry must not stop the campaign
         log.exception("static stage failed for kappa=%s", list(kappa))
         return (failed_static(config, kappa, f"{type(err).__name__}: {err}",
@@ -190,4 +235,5 @@ def run_static(config: dict, kappa) -> tuple[xr.Dataset, SectorModel | None, dic
     log.info("kappa=%s status=%d (%s) iterations=%d in_contact=%d/%d residual=%.2e "
              "complementarity=%.2e", list(kappa), result.status, result.reason, result.iterations,
              ds.attrs["n_in_contact"], len(model.pairs), result.residual, result.complementarity)
-    return ds, model, static_fields(model, result, prob)
+    fields = static_fields(model, result, prob)
+    return ds, model, fields if substructure is None else _morph_fields(fields, model, substructure[0])

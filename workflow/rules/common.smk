@@ -20,7 +20,7 @@ ADAPTIVE = config["sampling"].get("design", "paper") == "adaptive"
 # files those of every stage upstream. A rule passes them to its script as `params.config`, the only
 # configuration the script reads, so Snakemake's params trigger reruns exactly the jobs downstream of
 # an edited section, and every NetCDF file records their hash (ringdamper.io.provenance).
-MODEL = ("material", "geometry", "mesh", "operation")
+MODEL = ("material", "geometry", "mesh", "operation", "substructure")
 STATIC = MODEL + ("contact", "static")
 REDUCED = MODEL + ("reduction",)
 MODAL = STATIC + ("modal",)
@@ -30,6 +30,14 @@ DATASET = ("sampling",) + DNNM
 SURROGATE = DATASET + ("surrogate",)
 EXPLORATION = SURROGATE + ("exploration",)
 SENSITIVITY = SURROGATE + ("sensitivity",)
+
+
+SUPERELEMENT = f"{RESULTS}/superelement/fixed_part.npz"
+
+
+def superelement_input(wildcards):
+    """The fixed part's super-element when ``substructure.enabled`` (docs/reduction.md), else none."""
+    return [SUPERELEMENT] if config.get("substructure", {}).get("enabled", False) else []
 
 
 def sections(*names):

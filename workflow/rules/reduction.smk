@@ -1,6 +1,29 @@
+from ringdamper.reduction.superelement import blisk_config
+
+
+rule superelement:
+    output:
+        SUPERELEMENT,
+    params:
+        config=blisk_config(config),
+    threads: 1
+    resources:
+        mem_mb=scaled(1000),
+        runtime=10,
+    log:
+        log_file("superelement"),
+    benchmark:
+        benchmark_file("superelement")
+    conda:
+        "../../envs/ringdamper.yaml"
+    script:
+        "../../scripts/superelement.py"
+
+
 rule reduced:
     input:
         kappa_source=kappa_source,
+        superelement=superelement_input,
     output:
         f"{RESULTS}/geometry/{{gid}}/reduced.nc",
     params:

@@ -5,6 +5,7 @@ ONE_AT_A_TIME_GIDS = {label: gid_of(k) for label, k in REFERENCE_RINGS.items() i
 rule static:
     input:
         kappa_source=kappa_source,
+        superelement=superelement_input,
     output:
         nc=f"{RESULTS}/geometry/{{gid}}/static.nc",
         vtu=f"{RESULTS}/geometry/{{gid}}/static.vtu",

@@ -31,6 +31,7 @@ from scipy.sparse.csgraph import connected_components
 
 from ..fem.linalg import lowest_modes
 from ..fem.supernodal import SupernodalLDL
+from .hermitian_cb import COLUMN_BLOCK
 
 DENSE_EIGEN_LIMIT = 600  # interior sizes below this use a dense eigensolver for the fixed-interface modes
 
@@ -114,6 +115,16 @@ def _fixed_interface_modes(Kii, Mii, inverse, n_fi):
     return lowest_modes(Kii, Mii, n_fi, shift=0.0, lu=inverse)
 
 
+def _add_interior_mass(M_bb, M_bf, M_block, b: InteriorBlock, phi_block) -> None:
+    """M_bb += Psi^T M_ii Psi and M_bf += Psi^T M_ii Phi on the block's columns, with M_ii Psi formed
+    by column blocks of Psi (:data:`~.hermitian_cb.COLUMN_BLOCK` columns), never whole."""
+    for start in range(0, len(b.cols), COLUMN_BLOCK):
+        cols = slice(start, start + COLUMN_BLOCK)
+        mi_psi = M_block @ b.psi[:, cols]
+        M_bb[np.ix_(b.cols, b.cols[cols])] += b.psi.T @ mi_psi
+        M_bf[b.cols[cols]] += mi_psi.T @ phi_block
+
+
 def craig_bampton(K: sp.spmatrix, M: sp.spmatrix, boundary, interior, n_fi: int,
                   keep_modes: bool = False) -> CraigBampton:
     """Craig–Bampton model of (K, M) restricted to ``boundary`` U ``interior`` (clamped DoFs absent).
@@ -137,13 +148,11 @@ def craig_bampton(K: sp.spmatrix, M: sp.spmatrix, boundary, interior, n_fi: int,
     cpu.append(time.process_time())
     M_bf = Mib.T @ phi                                   # (M_bi + Psi^T M_ii) Phi
     for b in blocks:
-        mi_psi = Mii[b.rows][:, b.rows] @ b.psi
         K_bb[np.ix_(b.cols, b.cols)] += Kib[b.rows][:, b.cols].T @ b.psi
         x = Mib[b.rows].T @ b.psi                         # M_bi Psi on the block's columns
         M_bb[:, b.cols] += x
         M_bb[b.cols] += x.T
-        M_bb[np.ix_(b.cols, b.cols)] += b.psi.T @ mi_psi
-        M_bf[b.cols] += mi_psi.T @ phi[b.rows]
+        _add_interior_mass(M_bb, M_bf, Mii[b.rows][:, b.rows], b, phi[b.rows])
 
     K_cb = np.zeros((nb + n_fi, nb + n_fi))
     K_cb[:nb, :nb] = K_bb

@@ -198,8 +198,9 @@ def _reduction(config: dict) -> dict:
 
 
 def _mesh_levels(config: dict) -> dict:
-    """The default ring's static and reduction stages, each in its own process, on the 1x and 2x
-    meshes: CPU, wall, peak memory (ringdamper.bench.mesh_levels)."""
+    """The default ring's static and reduction stages, monolithic and on the fixed substructure, and
+    the super-element's build, each in its own process, on the 1x and 2x meshes: CPU, wall, peak
+    memory (ringdamper.bench.mesh_levels)."""
     from ringdamper.bench.mesh_levels import run
 
     return run(config)

@@ -26,6 +26,7 @@ import pandas as pd
 from ringdamper.campaign.adaptive.accuracy import domain_points, estimates
 from ringdamper.campaign.adaptive.design import round_of
 from ringdamper.campaign.adaptive.model import RoundModels
+from ringdamper.campaign.adaptive.replay import pooled_spread
 from ringdamper.campaign.adaptive.rounds import predicted_optimum
 from ringdamper.campaign.dataset import kappa, usable_mask
 from ringdamper.campaign.exploration import backbones, cube_grid
@@ -35,12 +36,6 @@ from ringdamper.config import load_config
 from ringdamper.io import read_netcdf
 
 OPTIMUM_GRID = 15     # points per axis of the grid the optimum search starts from (then polished)
-
-
-def pooled_spread(values: np.ndarray, ok: np.ndarray) -> float:
-    """√(mean over amplitudes of the variance over the usable rings): ``values``, ``ok`` (geometry, amplitude)."""
-    var = [np.var(values[ok[:, a], a]) for a in range(values.shape[1]) if ok[:, a].sum() > 1]
-    return float(np.sqrt(np.mean(var)))
 
 
 def rmse_at(surrogate, dataset, mask, rings: np.ndarray) -> dict:

@@ -13,5 +13,7 @@ Modules, one job each (method and its reasons: docs/adaptive.md):
 - :mod:`.batch`: the distance rule that spreads a batch;
 - :mod:`.stopping`: the stop decision from the estimated error, the optimum's stability and the budget;
 - :mod:`.rounds`: one round (fit, predicted optimum, stop or choose) and its record, and the whole loop
-  on any evaluation function (the tests' analytic ones).
+  on any evaluation function (the tests' analytic ones);
+- :mod:`.replay`: the rounds of a recorded campaign replayed on its rings, each judged on the
+  validation rings (the stop rule's tests).
 """

@@ -53,8 +53,30 @@ class ContactPairs:
         return self.tributary_area()
 
 
+class CyclicSectorDofs:
+    """The DoF layout every cyclic sector model shares, built-in or imported: three displacements
+    per node, interleaved (``3a, 3a+1, 3a+2``), over ``nodes``; the sector angle ``2π / n_sectors``;
+    the clamped DoFs of ``fixed_nodes``."""
+
+    nodes: np.ndarray
+    n_sectors: int
+    fixed_nodes: np.ndarray
+
+    @property
+    def n_dofs(self) -> int:
+        return 3 * len(self.nodes)
+
+    @property
+    def sector_angle(self) -> float:
+        return 2.0 * np.pi / self.n_sectors
+
+    @property
+    def fixed_dofs(self) -> np.ndarray:
+        return node_dofs(self.fixed_nodes)
+
+
 @dataclass
-class SectorModel:
+class SectorModel(CyclicSectorDofs):
     geometry: SectorMesh
     basis: Basis              # scalar basis (vector DoFs of node a: 3a, 3a+1, 3a+2)
     nodes: np.ndarray         # (n_nodes, 3) node coordinates
@@ -69,18 +91,6 @@ class SectorModel:
     tip_node: int
     K: sp.csr_matrix
     M: sp.csr_matrix
-
-    @property
-    def n_dofs(self) -> int:
-        return 3 * len(self.nodes)
-
-    @property
-    def sector_angle(self) -> float:
-        return 2.0 * np.pi / self.n_sectors
-
-    @property
-    def fixed_dofs(self) -> np.ndarray:
-        return node_dofs(self.fixed_nodes)
 
     def response_dof(self) -> int:
         """Z DoF of the blade-tip forcing / response node."""

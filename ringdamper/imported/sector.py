@@ -16,7 +16,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ringdamper.fem.elasticity import mass_matrix, tangent_stiffness
-from ringdamper.fem.model import node_dofs
+from ringdamper.fem.model import CyclicSectorDofs
 
 from . import checks
 from .mesh import ImportedMesh, build_mesh
@@ -26,7 +26,7 @@ LENGTH_UNITS = {"m": 1.0, "mm": 1e-3}
 
 
 @dataclass
-class ImportedSector:
+class ImportedSector(CyclicSectorDofs):
     mesh: ImportedMesh
     path: Path
     material: dict
@@ -49,18 +49,6 @@ class ImportedSector:
     @property
     def nodes(self) -> np.ndarray:
         return self.mesh.nodes
-
-    @property
-    def n_dofs(self) -> int:
-        return 3 * len(self.mesh.nodes)
-
-    @property
-    def sector_angle(self) -> float:
-        return 2.0 * np.pi / self.n_sectors
-
-    @property
-    def fixed_dofs(self) -> np.ndarray:
-        return node_dofs(self.fixed_nodes)
 
     @property
     def mass(self) -> float:

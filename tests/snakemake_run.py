@@ -53,7 +53,7 @@ def dry_run_jobs(results, configfile, *args) -> dict:
     """rule -> number of jobs a dry run of ``snakemake *args`` would run (its "Job stats" table; empty
     when there is nothing to be done)."""
     run = run_snakemake(results, configfile, "--dry-run", *args)
-    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.returncode == 0, failure_tail(run)
     lines = (run.stdout + run.stderr).splitlines()
     if not any(line.startswith("Job stats:") for line in lines):
         return {}
@@ -80,3 +80,9 @@ def kill_when(results, configfile, targets, env, reached, what: str, timeout: fl
         time.sleep(0.05)
     os.killpg(proc.pid, signal.SIGKILL)
     proc.wait()
+
+
+def failure_tail(run, chars: int = 3000) -> str:
+    """The end of a finished run's stdout and stderr, for an assertion's message: Snakemake writes a
+    dry run's errors to stdout, its log to stderr."""
+    return f"stdout:\n{run.stdout[-chars:]}\nstderr:\n{run.stderr[-chars:]}"

@@ -11,7 +11,7 @@ from ringdamper.campaign.adaptive.rounds import round_models, training_dataset
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.io import write_netcdf
 from ringdamper.nonlinear.stage import amplitude_grid, failed_dnnm
-from tests.snakemake_run import SMALL_CONFIG, run_snakemake
+from tests.snakemake_run import SMALL_CONFIG, failure_tail, run_snakemake
 
 from .synthetic import dnnm_dataset, write_campaign
 
@@ -42,7 +42,7 @@ def test_a_failed_ring_is_excluded_and_named_and_the_loop_goes_on(tmp_path, smal
     out = tmp_path / "results"
     _tree(out, small_config, failed={"a01_000"})
     run = run_snakemake(out, SMALL_CONFIG, out / "adaptive" / "round_2.yaml", "--allowed-rules", "adaptive_round")
-    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.returncode == 0, failure_tail(run)
     assert not (out / "logs" / "dnnm").exists()     # the synthetic rings were not recomputed
     record = yaml.safe_load((out / "adaptive" / "round_2.yaml").read_text())
     assert record["excluded"] == ["a01_000"] and record["n_computed"] == 12 and record["n_usable"] == 11

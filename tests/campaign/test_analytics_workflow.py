@@ -8,7 +8,7 @@ import yaml
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.io import check_contract, read_netcdf
 from ringdamper.nonlinear.stage import amplitude_grid, failed_dnnm
-from tests.snakemake_run import run_snakemake
+from tests.snakemake_run import failure_tail, run_snakemake
 
 from .synthetic import dnnm_dataset, write_campaign
 
@@ -36,7 +36,7 @@ def test_analytics_rules_on_a_synthetic_campaign(tmp_path, small_config):
                  "t006": dnnm_dataset(k.loc["t006"], alpha, [0] * (alpha.size - 3) + [3] * 3)}
     write_campaign(out, samples, alpha, overrides)
     run = run_snakemake(out, config_file, *[out / t for t in TARGETS])
-    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.returncode == 0, failure_tail(run)
     assert not (out / "logs" / "dnnm").exists()  # the per-geometry chain was not rerun
 
     dataset = read_netcdf(out / "campaign" / "dataset.nc")

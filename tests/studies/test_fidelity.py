@@ -11,7 +11,7 @@ from ringdamper.studies.fidelity.quantities import relative_errors, richardson, 
 from ringdamper.studies.fidelity.summary import choose
 from ringdamper.studies.fidelity.surrogate import backbone_dataset, lhs_design
 from tests.nonlinear.systems import one_dof
-from tests.snakemake_run import REPO, run_snakemake
+from tests.snakemake_run import REPO, failure_tail, run_snakemake
 
 
 def test_richardson_recovers_an_analytic_limit_and_order():
@@ -90,7 +90,7 @@ def test_fidelity_rules_run_on_the_coarse_configuration(tmp_path):
     fid = tmp_path / "results" / "fidelity"
     run = run_snakemake(tmp_path / "results", tmp_path / "config.yaml", fid / "dials.csv", fid / "mesh.csv",
                         fid / "mesh_backbone.csv", cores=2, timeout=600)
-    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.returncode == 0, failure_tail(run)
     dials = pd.read_csv(fid / "dials.csv")
     assert len(dials) == 5 and set(dials.dial) == {"harmonics", "amplitudes"}
     assert (dials[dials.is_reference].error_max == 0).all()

@@ -9,7 +9,7 @@ import pytest
 import yaml
 
 from tests.snakemake_run import SMALL_CONFIG as CONFIG
-from tests.snakemake_run import fault_environment, kill_when, run_snakemake
+from tests.snakemake_run import failure_tail, fault_environment, kill_when, run_snakemake
 from tools.compare_results import file_differences
 
 
@@ -44,7 +44,7 @@ def resumed(tmp_path_factory) -> Resumed:
     finished = {p.parent.name for p in (results / "geometry").glob("*/dnnm.nc")}
     assert run_snakemake(results, CONFIG, "--unlock", target).returncode == 0
     run = run_snakemake(results, CONFIG, "--rerun-incomplete", target, cores=2, timeout=1800)
-    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.returncode == 0, failure_tail(run)
     return Resumed(results, stalled["gid"], at_kill, finished, _outputs(results))
 
 

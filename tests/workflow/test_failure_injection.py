@@ -10,7 +10,7 @@ import yaml
 
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.io import read_netcdf
-from tests.snakemake_run import SMALL_CONFIG, fault_environment, run_snakemake
+from tests.snakemake_run import SMALL_CONFIG, failure_tail, fault_environment, run_snakemake
 
 
 @pytest.mark.slow
@@ -23,7 +23,7 @@ def test_an_injected_static_failure_is_flagged_and_excluded_and_the_campaign_end
     out = tmp_path / "results"
 
     run = run_snakemake(out, SMALL_CONFIG, out / "surrogate" / "kriging.nc", cores=2, timeout=1800, env=env)
-    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.returncode == 0, failure_tail(run)
 
     for name, kind in (("static.nc", "static"), ("dnnm.nc", "dnnm")):
         bad = read_netcdf(out / "geometry" / failed / name, kind)

@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 
 from ringdamper.publish import ManifestError, main, publish, read_manifest
-from tests.snakemake_run import REPO, run_snakemake
+from tests.snakemake_run import REPO, failure_tail, run_snakemake
 
 FOLDERS = ("calibration", "fidelity", "epmc_time_domain", "figures", "adaptive")
 #: generated pages directly under docs/
@@ -33,7 +33,7 @@ def test_every_result_of_the_manifest_is_made_by_a_rule(tmp_path):
     sources = [tmp_path / source for entries in read_manifest(REPO / "docs" / "artifacts.yaml").values()
                for source in entries.values()]
     run = run_snakemake(tmp_path, REPO / "config.yaml", "--dry-run", *sources)
-    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.returncode == 0, failure_tail(run)
 
 
 def _manifest(tmp_path, text) -> Path:

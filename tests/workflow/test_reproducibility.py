@@ -8,7 +8,7 @@ import pytest
 import xarray as xr
 
 from ringdamper.io import provenance
-from tests.snakemake_run import REPO, effective_config, run_snakemake
+from tests.snakemake_run import REPO, effective_config, failure_tail, run_snakemake
 from tests.snakemake_run import SMALL_CONFIG as CONFIG
 from tools.compare_results import differences
 
@@ -52,7 +52,7 @@ def test_the_report_is_regenerated_from_the_results_alone(small_campaign, tmp_pa
     results = tmp_path / "results"
     shutil.copytree(small_campaign, results, ignore=shutil.ignore_patterns("report.html"))
     run = run_snakemake(results, CONFIG, "--report", results / "report.html")
-    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.returncode == 0, failure_tail(run)
     html = (results / "report.html").read_text()
     assert all(p.name in html for p in (results / "figures").glob("*.png"))
     dry = run_snakemake(results, CONFIG, "--dry-run")
@@ -71,7 +71,7 @@ def test_the_report_shows_the_study_charts_run_into_the_results(small_campaign, 
     chart.parent.mkdir(parents=True)
     shutil.copyfile(REPO / "docs" / "figures" / "method_limits_stability.png", chart)
     run = run_snakemake(results, CONFIG, "--report", results / "report.html", "all", "study_charts")
-    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.returncode == 0, failure_tail(run)
     html = (results / "report.html").read_text()
     assert "method_limits_stability.png" in html
     assert "harmonic-balance Jacobian for a Duffing oscillator" in html       # its caption

@@ -12,7 +12,7 @@ import pytest
 import xarray as xr
 import yaml
 
-from tests.snakemake_run import REPO, run_snakemake
+from tests.snakemake_run import REPO, failure_tail, run_snakemake
 
 SMALL_STUDIES = {
     "hub_calibration": {"bracket": [0.01, 0.03], "xtol": 1.0e-5},
@@ -43,7 +43,7 @@ def test_study_rules_run_on_a_small_setting(tmp_path):
     path.write_text(yaml.safe_dump(config))
     out = tmp_path / "results"
     run = run_snakemake(out, path, "studies", "--omit-from", "epmc_time_domain", cores=2, timeout=1500)
-    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.returncode == 0, failure_tail(run)
     studies = out / "studies"
 
     hub = yaml.safe_load((studies / "hub_calibration.yaml").read_text())

@@ -6,7 +6,7 @@ import yaml
 
 from ringdamper.campaign.sampling import make_samples
 from ringdamper.io import read_netcdf
-from tests.snakemake_run import REPO, run_snakemake
+from tests.snakemake_run import REPO, failure_tail, run_snakemake
 
 
 def test_bad_config_stops_before_any_job(tmp_path, small_config):
@@ -30,7 +30,7 @@ def test_small_campaign_runs_and_agrees_with_the_library(tmp_path, small_config)
     targets = [str(out / "geometry" / gid / "dnnm.nc") for gid in chosen]
     targets += [str(out / "figures" / "static_contact_maps.png"), str(out / "modal" / "resonance.yaml")]
     run = run_snakemake(out, REPO / "tests" / "config_small.yaml", *targets)
-    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.returncode == 0, failure_tail(run)
     assert not (out / "adaptive").exists()       # no adaptive round: none of these files needs one
     for gid in [g for g in table.gid if (out / "geometry" / g / "static.nc").exists()]:
         ds = read_netcdf(out / "geometry" / gid / "static.nc")

@@ -86,6 +86,7 @@ import numpy as np
 from ringdamper.nonlinear.contact.elements import Elements
 from ringdamper.nonlinear.contact.friction import ContactAFT, FrictionContacts
 from ringdamper.nonlinear.fourier import Fourier, real_block, real_vector, to_complex
+from ringdamper.nonlinear.harmonic_balance.nonlinear_rows import StuckBasis, reduced_solver
 from ringdamper.nonlinear.harmonic_balance.receptance import DampedReceptance, Receptance
 from ringdamper.nonlinear.harmonic_balance.structure import Structure
 
@@ -177,12 +178,17 @@ class CondensedHBM:
     condensed modes are formed (:meth:`receptance`; a solve's start point: the series then serves it
     and every point within its reach, to rounding); None: direct sums.
 
+    ``nonlinear_rows``: factorisations may solve on the nonlinear contact rows only, through the stuck
+    structure (:mod:`ringdamper.nonlinear.harmonic_balance.nonlinear_rows`, undamped models), where that
+    system is the smaller (:meth:`CoreJacobian.reduced_solver`).
+
     Fixed once built (module docstring, *State*): setting an attribute raises.
     """
 
     def __init__(self, structure: Structure, contacts: FrictionContacts | Elements, H: int, nt: int,
                  explicit=None, damping=None, forced: bool = False, gamma: float = 0.0,
-                 gauge_tol: float = 1e-2, expansion: tuple[float, float] | None = None):
+                 gauge_tol: float = 1e-2, expansion: tuple[float, float] | None = None,
+                 nonlinear_rows: bool = False):
         if H > structure.H_max:
             raise ValueError(f"structure has harmonics up to {structure.H_max}, H={H} requested")
         contacts = contacts.for_pairs(structure.npairs)
@@ -228,6 +234,8 @@ class CondensedHBM:
         kscale = contacts.stiffness_scale()
         self._null_tol = gauge_tol * kscale * (np.linalg.norm(PsiZ, 2) if self.zero_modes.size
                                                else 0.0)
+        self.stuck = StuckBasis(self, contacts.stuck_stiffness(), None if expansion is None else expansion[0]) \
+            if nonlinear_rows else None
         self._fixed = True
 
     def __setattr__(self, name, value):
@@ -537,6 +545,14 @@ class CoreJacobian:
         if self.rotation is not None:
             self.rotation.apply(out, v)
         return out
+
+    def reduced_solver(self, full_order: int, outer=None):
+        """The factorised solver on the nonlinear rows of ``outer`` (this Jacobian bordered by a
+        continuation; default itself) where the model has its stuck basis and that system is the smaller
+        (:func:`ringdamper.nonlinear.harmonic_balance.nonlinear_rows.reduced_solver`), else None."""
+        if self.model.stuck is None:
+            return None
+        return reduced_solver(self.model.stuck, self if outer is None else outer, full_order)
 
     def toarray(self, out: np.ndarray | None = None) -> np.ndarray:
         """The matrix (Fortran order, :func:`ringdamper.nonlinear.solvers.jacobian.dense`), in ``out`` if

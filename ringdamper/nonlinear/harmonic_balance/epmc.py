@@ -216,7 +216,7 @@ def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, 
          steps: StepControl | None = None, gauge_reference: np.ndarray | None = None,
          alpha_start: float | None = None, drift_tol: float = 1e-8,
          stuck_shortcut: bool = True, max_arc_points: int | None = None,
-         amplitude: np.ndarray | None = None) -> Backbone:
+         amplitude: np.ndarray | None = None, nonlinear_rows: bool = False) -> Backbone:
     """dNNM backbone of one mode over the increasing amplitude grid ``alpha``: modal amplitudes, or
     with ``amplitude = w`` (n,), amplitudes of harmonic 1 of ``w q`` (a DoF: a unit row; a relative
     displacement: a difference of two; module docstring).
@@ -238,7 +238,9 @@ def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, 
     point gets status DRIFT.
     ``max_arc_points``: arc-length points allowed past a fold in α (default
     :meth:`ringdamper.nonlinear.solvers.continuation.StepControl.arc_points`). ``tol`` and ``max_iter`` are the
-    Newton settings of every solve (they replace those of ``steps``).
+    Newton settings of every solve (they replace those of ``steps``). ``nonlinear_rows``: the Newton
+    systems are solved on the nonlinear contact rows where that system is the smaller
+    (:mod:`ringdamper.nonlinear.harmonic_balance.nonlinear_rows`; undamped structures).
     The condensed model's receptance series are formed about the frequency the first Newton solve
     starts from (:class:`ringdamper.nonlinear.harmonic_balance.condensed.CondensedHBM`, ``expansion``).
     """
@@ -258,7 +260,8 @@ def epmc(structure: Structure, contacts: FrictionContacts | Elements, alpha, *, 
     below_onset = alpha[alpha < (1 - 1e-9) * onset] if stuck_shortcut else alpha[:0]
     model = CondensedHBM(structure, contacts, H, nt, explicit=pole_modes(structure, H, *window),
                          damping=structural_damping(structure, H),
-                         expansion=(omega0, 0.0 if below_onset.size else xi0))   # the first Newton's start
+                         expansion=(omega0, 0.0 if below_onset.size else xi0),   # the first Newton's start
+                         nonlinear_rows=nonlinear_rows)
     gauge = model.initial_gauge(None if gauge_reference is None else np.asarray(gauge_reference, float))
     _, phase_index = _initial_guess(model, phi, omega0, 1.0, reference=gauge.reference)
     problem = EPMCProblem(model, phase_index, drift_tol, amplitude, gauge=gauge)
@@ -448,7 +451,8 @@ def _higher_model(backbone: Backbone, H: int, nt: int, expansion: tuple[float, f
     base = backbone.model
     model = CondensedHBM(base.structure, base.contacts, H, nt,
                          explicit=pole_modes(base.structure, H, *backbone.pole_window),
-                         damping=structural_damping(base.structure, H), expansion=expansion)
+                         damping=structural_damping(base.structure, H), expansion=expansion,
+                         nonlinear_rows=base.stuck is not None)
     if not all(np.array_equal(a, b) for a, b in zip(base.S, model.S)):
         raise ValueError("the explicit modes of the shared harmonics differ between the two truncations")
     return model

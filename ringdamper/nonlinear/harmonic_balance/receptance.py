@@ -72,12 +72,16 @@ class Receptance:
         self.near = self.far_min = None
         self._build(s0)
 
-    def __call__(self, s: complex) -> np.ndarray:
-        """The receptance at the series variable ``s`` (``u`` for :class:`DampedReceptance`)."""
+    def __call__(self, s: complex, exclude: np.ndarray | None = None) -> np.ndarray:
+        """The receptance at the series variable ``s`` (``u`` for :class:`DampedReceptance`), without the
+        modes ``exclude`` (near modes only: ``ValueError`` for a mode in the series)."""
+        if exclude is not None and not np.all(np.isin(exclude, self.near)):
+            raise ValueError("exclude: only modes summed directly can be left out of the receptance")
         K = self.terms_needed(abs(s) / self.far_min) if self.far_min else 0
         if K > len(self.terms):
-            return self.direct(s, slice(None))
-        G = self.direct(s, self.near)
+            return self.direct(s, np.setdiff1d(np.arange(self.w2.size), exclude) if exclude is not None
+                               else slice(None))
+        G = self.direct(s, self.near if exclude is None else np.setdiff1d(self.near, exclude))
         if K:
             series = self.terms[K - 1].copy()                # Horner: M_0 + s (M_1 + s (M_2 + …))
             for k in range(K - 2, -1, -1):

@@ -8,8 +8,9 @@ one. Outside any budget a factorisation costs one empty-list check.
 """
 from __future__ import annotations
 
+from collections import Counter
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 _open: list = []                        # the budgets open, innermost last
 
@@ -20,10 +21,12 @@ class LUBudgetExceeded(RuntimeError):
 
 @dataclass
 class LUBudget:
-    """``limit`` LU factorisations allowed (None: no limit), ``used`` the ones charged so far."""
+    """``limit`` LU factorisations allowed (None: no limit), ``used`` the ones charged so far and
+    ``kinds`` their count by kind (``"full"``: the whole Newton system; ``"nonlinear_rows"``)."""
 
     limit: int | None
     used: int = 0
+    kinds: Counter = field(default_factory=Counter)
 
 
 @contextmanager
@@ -37,10 +40,11 @@ def lu_budget(limit: int | None):
         _open.remove(budget)
 
 
-def charge_lu() -> None:
-    """One LU factorisation about to be made: charged to every open budget; raises
+def charge_lu(kind: str = "full") -> None:
+    """One LU factorisation of ``kind`` about to be made: charged to every open budget; raises
     :class:`LUBudgetExceeded` if that takes one past its limit."""
     for budget in _open:
         budget.used += 1
+        budget.kinds[kind] += 1
         if budget.limit is not None and budget.used > budget.limit:
             raise LUBudgetExceeded(f"LU budget of {budget.limit} factorisations exceeded")

@@ -56,6 +56,12 @@ class Bordered:
         n = self.A.shape[1]
         return np.concatenate((apply(self.A, v[:n]) + self.columns @ v[n:], self.rows @ v))
 
+    def reduced_solver(self, full_order: int, outer=None):
+        """The solver its innermost operator offers for the whole bordered system (``reduced_solver``,
+        e.g. :meth:`ringdamper.nonlinear.harmonic_balance.condensed.CoreJacobian.reduced_solver`), or None."""
+        inner = getattr(self.A, "reduced_solver", None)
+        return None if inner is None else inner(full_order, self if outer is None else outer)
+
     def toarray(self, out: np.ndarray | None = None) -> np.ndarray:
         m, n = self.A.shape
         out = np.empty(self.shape, order="F") if out is None else out

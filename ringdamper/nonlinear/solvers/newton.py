@@ -113,9 +113,15 @@ def _equilibrate(A: np.ndarray, scale: np.ndarray) -> tuple[np.ndarray, float]:
     return rows, np.inf if np.any(bad) else float(dlange("1", A))
 
 
-def factorize(J, trivial: np.ndarray | None, n_core: int) -> Factorization:
+def factorize(J, trivial: np.ndarray | None, n_core: int):
     """The :class:`Factorization` of ``J`` (a matrix, or an operator formed for the occasion, whose
-    matrix the LU may then overwrite)."""
+    matrix the LU may then overwrite), or the smaller system an operator offers for it
+    (``J.reduced_solver(order)``, given the order of the full LU; None: it offers none)."""
+    offer = getattr(J, "reduced_solver", None) if is_operator(J) else None
+    if offer is not None:
+        solver = offer(J.shape[0] - (0 if trivial is None else int(np.count_nonzero(trivial))))
+        if solver is not None:
+            return solver
     return Factorization(dense(J), trivial, n_core, overwrite=is_operator(J))
 
 

@@ -214,6 +214,14 @@ def _dnnm(config: dict) -> dict:
     return run(config)
 
 
+def _nonlinear_rows(config: dict) -> dict:
+    """The Newton system on the nonlinear contact rows against the full one on the default ring
+    (ringdamper.bench.nonlinear_rows)."""
+    from ringdamper.bench.nonlinear_rows import run
+
+    return run(config)
+
+
 def _coulomb(config: dict) -> dict:
     """The Coulomb law's AFT on the default ring's backbone states, against the former march
     (ringdamper.bench.coulomb)."""
@@ -237,7 +245,8 @@ def _surrogate(config: dict) -> dict:
 
 
 BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "geometry_chain": _geometry_chain,
-              "reduction": _reduction, "dnnm": _dnnm, "coulomb": _coulomb, "library": _library,
+              "reduction": _reduction, "dnnm": _dnnm, "nonlinear_rows": _nonlinear_rows,
+              "coulomb": _coulomb, "library": _library,
               "dynamics_synthetic": _dynamics_synthetic,
               "static_synthetic": _static_synthetic,
               "mesh_convergence": _mesh_convergence, "mesh_levels": _mesh_levels, "surrogate": _surrogate}

@@ -34,8 +34,9 @@ def pytest_collection_modifyitems(items):
     """Under ``pytest -n 2 --dist loadgroup`` (``make test``), the tests of a module go to one worker,
     so that its module-scoped fixtures (a campaign run, a reduced model) are built once; the modules
     that use the session's small campaign go together to one worker, which builds it once. Snakemake
-    runs of different modules may overlap: each writes into a results folder of its own, and
-    Snakemake's locks and incomplete markers in the repository's ``.snakemake`` are per output file."""
+    runs of different modules may overlap: each writes into a results folder of its own, Snakemake's
+    incomplete markers in the repository's ``.snakemake`` are per output file, and the runs take no
+    locks (``tests/snakemake_run.py``)."""
     campaign_modules = {item.module for item in items if "small_campaign" in getattr(item, "fixturenames", ())}
     for item in items:
         module = getattr(item, "module", None)

@@ -15,8 +15,10 @@ SMALL_CONFIG = REPO / "tests" / "config_small.yaml"  # the coarse test campaign
 
 def snakemake_command(results, configfile, *args, cores=1) -> list[str]:
     """The command line of ``snakemake *args`` (targets and flags) with ``configfile``, writing into
-    ``results``."""
-    return [sys.executable, "-m", "snakemake", *map(str, args), "--snakefile", str(REPO / "Snakefile"),
+    ``results``; without Snakemake's locks (``--nolock``): every test's results folder is its own, and
+    the runs of the tests share the repository as working directory, whose ``.snakemake/locks`` folder
+    a run removes whole when it ends, under another run still building its DAG."""
+    return [sys.executable, "-m", "snakemake", *map(str, args), "--nolock", "--snakefile", str(REPO / "Snakefile"),
             "--directory", str(REPO), "--configfile", str(configfile), "--cores", str(cores),
             "--config", f"results={results}"]  # last: --config takes every following key=value
 

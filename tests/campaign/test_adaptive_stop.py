@@ -1,9 +1,9 @@
 """The stop rule on a recorded campaign history (data/adaptive_history.nc, made by tools/stop_history.py
-from a default campaign: its 42 training rings with the round that chose each, rounds 1-2, and its
-20 validation rings), replayed round by round (ringdamper.campaign.adaptive.replay): each round
-chooses the rings the campaign chose, the rule stops where the validation RMSE first meets the
-tolerance, give or take one round, and held points moved within the solver's tolerance leave the stop
-round and the ring count as they were."""
+from a fresh-clone default campaign: its 60 training rings with the round that chose each, rounds 1-6,
+the last stopped by the ring budget, and its 20 validation rings), replayed round by round
+(ringdamper.campaign.adaptive.replay): each round chooses the rings the campaign chose, the rule stops
+where the validation RMSE first meets the tolerance, give or take one round, and held points moved
+within the solver's tolerance leave the stop round and the ring count as they were."""
 from pathlib import Path
 
 import numpy as np
@@ -48,12 +48,15 @@ def replayed(history):
 
 
 def test_each_replayed_round_chooses_the_rings_the_campaign_chose(history, replayed):
-    """Every round but the last (whose choice, if the replayed rule goes on, the history does not hold)."""
+    """Every round but the last (whose choice, if the replayed rule goes on, the history does not hold),
+    as a set: a round's rings are computed together and their order, by acquisition score, only names
+    them; two of round 4's six have scores that the campaign's fit and the replay's rank either way."""
     for record in replayed[:-1]:
         recorded = history.isel(geometry=(history["round"] == record["round"]).values)
         chosen = np.array([c["kappa"] for c in record["chosen"]]).reshape(-1, 3)
         expected = np.column_stack([recorded[f"kappa{i}"].values for i in (1, 2, 3)])
-        np.testing.assert_allclose(chosen, expected, rtol=0, atol=KAPPA_ATOL, err_msg=f"round {record['round']}")
+        np.testing.assert_allclose(np.unique(chosen, axis=0), np.unique(expected, axis=0), rtol=0,
+                                   atol=KAPPA_ATOL, err_msg=f"round {record['round']}")
 
 
 def test_the_rule_stops_where_the_validation_error_first_meets_the_tolerance(replayed):

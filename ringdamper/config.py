@@ -232,12 +232,25 @@ def resolve_imported_mesh(config: dict, config_dir) -> dict:
     return config
 
 
+def _contact_pairs_errors(config: dict) -> list[str]:
+    """``mesh.contact_pairs``: the grid needs its two cell counts, the node placement takes none."""
+    pairs = config["mesh"].get("contact_pairs", {"placement": "nodes"})
+    counts = [key for key in ("n_theta", "n_axial") if key in pairs]
+    if pairs["placement"] == "grid" and len(counts) < 2:
+        return ["mesh.contact_pairs: placement 'grid' needs n_theta and n_axial (cells in theta over the "
+                "sector and across the ring's axial band, each >= 1)"]
+    if pairs["placement"] == "nodes" and counts:
+        return [f"mesh.contact_pairs.{counts[0]}: only for placement 'grid' (placement 'nodes' puts one pair "
+                "on every node of the ring's upper surface)"]
+    return []
+
+
 def validate_config(config: dict[str, Any]) -> dict[str, Any]:
     """Validate ``config`` in place semantics; raise one :class:`ConfigError` listing every problem."""
     errors = _schema_errors(config)
     if not errors:
         errors = (_geometry_errors(config) + _solver_errors(config) + _analytics_errors(config)
-                  + _contact_state_errors(config) + _imported_errors(config))
+                  + _contact_state_errors(config) + _imported_errors(config) + _contact_pairs_errors(config))
     if errors:
         raise ConfigError("invalid configuration:\n  - " + "\n  - ".join(errors))
     return config

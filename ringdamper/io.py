@@ -166,15 +166,11 @@ def write_vtu(model, path, point_data: dict | None = None, cell_data: dict | Non
 
 
 def mesh_fields(model) -> tuple[dict, dict]:
-    """Point and cell fields of the mesh file: body, contact pair id, local normal, part id."""
+    """Point and cell fields of the mesh file: body, contact pair id (the pair weighing the node most),
+    local normal, part id."""
     n = len(model.nodes)
-    pair_id = np.full(n, -1)
-    pairs = model.pairs
-    pair_id[pairs.ring_node] = np.arange(len(pairs))
-    pair_id[pairs.blisk_node] = np.arange(len(pairs))
-    normal = np.zeros((n, 3))
-    normal[pairs.ring_node] = pairs.frame[:, 0]
-    normal[pairs.blisk_node] = pairs.frame[:, 0]
+    pair_id = model.pairs.pair_of_node(n)
+    normal = np.where((pair_id >= 0)[:, None], model.pairs.frame[pair_id, 0], 0.0)
     forcing = np.zeros(n, dtype=int)
     forcing[model.tip_node] = 1
     return ({"body": model.node_body, "pair_id": pair_id, "contact_normal": normal,

@@ -54,7 +54,7 @@ def time_ring(config: dict, kappa) -> dict:
                           range(config["reduction"]["n_harmonics"] + 1), sizes["n_if"])
     out["mead_interface_s"] = time.process_time() - t
     t = time.process_time()
-    bases = [modal_basis(rh, rs.B, rs.response_index) for rh in rs.harmonics]
+    bases = [modal_basis(rh, rs.response_index) for rh in rs.harmonics]
     out["modal_bases_s"] = time.process_time() - t
     t = time.process_time()
     with tempfile.TemporaryDirectory() as tmp:

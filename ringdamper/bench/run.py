@@ -101,7 +101,7 @@ def _geometry_chain(config: dict) -> dict:
     def reduced_model(n_harmonics):
         rs = reduce_sector(model, config["operation"]["engine_order"], n_harmonics=n_harmonics,
                            **reduction_sizes(config))
-        return reduced_dataset(rs, kappa, [modal_basis(rh, rs.B, rs.response_index) for rh in rs.harmonics])
+        return reduced_dataset(rs, kappa, [modal_basis(rh, rs.response_index) for rh in rs.harmonics])
 
     reduced = reduced_model(config["reduction"]["n_harmonics"])
     times["reduced_s"] = time.perf_counter() - t

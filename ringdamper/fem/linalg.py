@@ -119,7 +119,7 @@ def lowest_hermitian_modes(K: sp.spmatrix, M: sp.spmatrix, n_modes: int, lu: "Re
 
 def eigh_rows(K: np.ndarray, M: np.ndarray, R: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """All eigenvalues w (ascending) of the dense Hermitian pair K phi = w M phi (M positive definite)
-    and R Phi, the rows R (r x n, real) of the mass-normalised eigenvectors Phi (Phi^H M Phi = I).
+    and R Phi, the rows R (r x n, real or complex) of the mass-normalised eigenvectors Phi (Phi^H M Phi = I).
 
     The steps of LAPACK's ``zhegvd``/``dsygvd`` (what ``scipy.linalg.eigh(K, M)`` calls): M = L L^H
     (``potrf``), C = L^-1 K L^-H (``hegst``), C = Q T Q^H with T real tridiagonal (``hetrd``),
@@ -128,7 +128,7 @@ def eigh_rows(K: np.ndarray, M: np.ndarray, R: np.ndarray) -> tuple[np.ndarray, 
     Householder reflectors of Q are applied to the r rows of R L^-H (``unmqr``) instead of to the
     n x n matrix Z, and the last triangular solve has r right-hand sides instead of n.
     """
-    cplx = np.iscomplexobj(K) or np.iscomplexobj(M)
+    cplx = np.iscomplexobj(K) or np.iscomplexobj(M) or np.iscomplexobj(R)
     dtype = np.complex128 if cplx else np.float64
     names = ("potrf", "hegst", "hetrd", "hetrd_lwork", "unmqr") if cplx else \
         ("potrf", "sygst", "sytrd", "sytrd_lwork", "ormqr")
@@ -143,8 +143,8 @@ def eigh_rows(K: np.ndarray, M: np.ndarray, R: np.ndarray) -> tuple[np.ndarray, 
     w, Z, info = lapack.dstevd(d, e, compute_v=1)
     if info:
         raise np.linalg.LinAlgError(f"the tridiagonal eigensolver did not converge (dstevd: {info})")
-    R = np.asarray(R, dtype=float)      # real rows: (L^-1 R^T)^H = R L^-H
-    W = np.asfortranarray(sla.solve_triangular(L, R.T.astype(dtype), lower=True).conj().T)
+    # R L^-H = (L^-1 R^H)^H
+    W = np.asfortranarray(sla.solve_triangular(L, np.asarray(R).conj().T.astype(dtype), lower=True).conj().T)
     if n > 1:   # Q = H(1) ... H(n-1) acts on coordinates 2..n (``unmtr`` with uplo L)
         W[:, 1:], _, info = unmqr("R", "N", reflectors[1:, :-1], tau[:n - 1], W[:, 1:],
                                   lwork=max(1, 64 * W.shape[0]), overwrite_c=1)

@@ -5,19 +5,17 @@ the vector DoFs of node i are 3i, 3i+1, 3i+2 (x, y, z). Linear elasticity, lumpe
 the consistent matrices of both bodies (blisk and ring are disconnected in K, coupled only through
 the contact pairs).
 
-Contact pairs (docs/design.md §2): one per node of the ring's upper surface inside the sector; nodes on the
-right cyclic cut are dropped (they are the next sector's left-cut nodes) and their tributary area is
-added to their left partners, so every pair is counted once. Local frame per pair: n = outward normal
-of the ring's upper surface r = R_c + delta1 b(theta) (from the ring towards the blisk), t1
-circumferential in the tangent plane, t2 = e_z; the relative displacement d = F (u_ring - u_blisk)
-with d_n > 0 closing the contact.
+Contact pairs (docs/design.md §2; :mod:`ringdamper.fem.contact_pairs`): ``mesh.contact_pairs.placement``
+``nodes``, one per node of the ring's upper surface against the coincident groove node, or ``grid``,
+cell-averaged pairs on an n_theta × n_axial grid of the upper surface, independent of the mesh. Local
+frame per pair: n = outward normal of the ring's upper surface r = R_c + delta1 b(theta) (from the
+ring towards the blisk), t1 circumferential in the tangent plane, t2 = e_z; the relative displacement
+d = F (u_ring - u_blisk) with d_n > 0 closing the contact.
 """
 
 from __future__ import annotations
 
-import functools
-from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
@@ -27,30 +25,12 @@ from skfem import Basis, ElementHex1, ElementHex2, FacetBasis, LinearForm, asm
 from ..geometry.sector import BODY_RING, MERGE_TOL, SectorMesh
 from ..geometry.shape import upper_slope
 from .contact_law import spring_diagonal, stuck_pair_stiffness
+from .contact_pairs import ContactPairs, cell_pairs, grid_cell_index, node_pairs
 from .elasticity import mass_matrix, tangent_stiffness
 
 INTORDER = {1: 3, 2: 5}  # Gauss rule exact for the mass matrix of each order (docs/design.md §9)
 ELEMENTS = {1: ElementHex1, 2: ElementHex2}
-
-
-@dataclass
-class ContactPairs:
-    """Node-to-node contact pairs with their local frames."""
-
-    ring_node: np.ndarray    # (m,) node of the ring's upper surface
-    blisk_node: np.ndarray   # (m,) coincident groove node
-    frame: np.ndarray        # (m, 3, 3) rows n, t1, t2 (Cartesian components)
-    position: np.ndarray     # (m, 3) at rest
-    tributary_area: Callable[[], np.ndarray] = field(repr=False)  # computes ``area``
-
-    def __len__(self) -> int:
-        return len(self.ring_node)
-
-    @functools.cached_property
-    def area(self) -> np.ndarray:
-        """(m,) tributary area (m^2), consistent: integral of the shape function. Computed on first
-        use (a facet quadrature; the reduction stage never needs it)."""
-        return self.tributary_area()
+NODE_PAIRS = {"placement": "nodes"}
 
 
 class CyclicSectorDofs:
@@ -157,7 +137,7 @@ def _contact_frames(positions, geometry: SectorMesh) -> np.ndarray:
     return np.stack([n, t1, e_z], axis=1)
 
 
-def _contact_pairs(geometry, scalar_basis, nodes, node_body, left, right) -> ContactPairs:
+def _node_pairs(geometry, scalar_basis, nodes, node_body, left, right) -> ContactPairs:
     mesh = geometry.mesh
     top_facets = _facets_within(mesh, geometry.sets["ring_top"])
     groove_facets = _facets_within(mesh, geometry.sets["groove"])
@@ -178,9 +158,27 @@ def _contact_pairs(geometry, scalar_basis, nodes, node_body, left, right) -> Con
     blisk_nodes = groove_nodes[_match(nodes[ring_nodes], nodes[groove_nodes], "contact pairs")]
     assert np.all(node_body[ring_nodes] == BODY_RING) and np.all(node_body[blisk_nodes] != BODY_RING)
     positions = nodes[ring_nodes]
-    return ContactPairs(ring_node=ring_nodes, blisk_node=blisk_nodes,
-                        frame=_contact_frames(positions, geometry), position=positions,
-                        tributary_area=tributary_area)
+    return node_pairs(ring_nodes, blisk_nodes, len(nodes), _contact_frames(positions, geometry), positions,
+                      tributary_area)
+
+
+def _grid_pairs(geometry, scalar_basis, nodes, n_theta: int, n_axial: int) -> ContactPairs:
+    """Cell-averaged pairs on n_theta × n_axial cells of the upper surface over the whole sector angle
+    and the ring's axial band."""
+    mesh = geometry.mesh
+    top_facets = _facets_within(mesh, geometry.sets["ring_top"])
+    band = nodes[np.unique(scalar_basis.get_dofs(top_facets).all()), 2]
+    cell_of = grid_cell_index((-geometry.half_angle, geometry.half_angle), (band.min(), band.max()),
+                              n_theta, n_axial)
+    return cell_pairs(mesh, scalar_basis.elem, top_facets, _facets_within(mesh, geometry.sets["groove"]),
+                      cell_of, n_theta * n_axial, len(nodes), lambda p: _contact_frames(p, geometry),
+                      "mesh.contact_pairs")
+
+
+def _contact_pairs(geometry, scalar_basis, nodes, node_body, left, right, placement: dict) -> ContactPairs:
+    if placement["placement"] == "grid":
+        return _grid_pairs(geometry, scalar_basis, nodes, placement["n_theta"], placement["n_axial"])
+    return _node_pairs(geometry, scalar_basis, nodes, node_body, left, right)
 
 
 def build_model(geometry: SectorMesh, config: dict, elements: np.ndarray | None = None) -> SectorModel:
@@ -195,7 +193,8 @@ def build_model(geometry: SectorMesh, config: dict, elements: np.ndarray | None 
     node_body[np.unique(scalar.dofs.element_dofs[:, geometry.body == BODY_RING])] = BODY_RING
     fixed = np.unique(scalar.get_dofs(_facets_within(geometry.mesh, geometry.sets["bore"])).all())
     left, right = _cyclic_nodes(nodes, node_body, geometry.half_angle)
-    pairs = _contact_pairs(geometry, scalar, nodes, node_body, left, right)
+    pairs = _contact_pairs(geometry, scalar, nodes, node_body, left, right,
+                           config["mesh"].get("contact_pairs", NODE_PAIRS))
     tip = int(np.argmin(np.linalg.norm(nodes - geometry.vertices[geometry.tip_vertex], axis=1)))
     return SectorModel(
         geometry=geometry, basis=scalar, nodes=nodes, node_body=node_body, element_order=order,
@@ -206,18 +205,20 @@ def build_model(geometry: SectorMesh, config: dict, elements: np.ndarray | None 
 
 
 def relative_displacement_operator(model: SectorModel) -> sp.csr_matrix:
-    """G (3m x n_dofs): stacked [d_n, d_t1, d_t2] of every pair, d = F (u_ring - u_blisk)."""
+    """G (3m x n_dofs): stacked [d_n, d_t1, d_t2] of every pair, d = F (u_ring - u_blisk) with
+    u_ring, u_blisk the pair's weighted node displacements (:mod:`ringdamper.fem.contact_pairs`)."""
     pairs = model.pairs
-    m = len(pairs)
-    rows = np.repeat(np.arange(3 * m), 3)
-    ring_cols = (3 * pairs.ring_node[:, None, None] + np.arange(3)[None, None, :]).repeat(3, axis=1)
-    blisk_cols = (3 * pairs.blisk_node[:, None, None] + np.arange(3)[None, None, :]).repeat(3, axis=1)
-    vals = pairs.frame.reshape(-1)
-    G = sp.coo_matrix((np.concatenate([vals, -vals]),
-                       (np.concatenate([rows, rows]),
-                        np.concatenate([ring_cols.reshape(-1), blisk_cols.reshape(-1)]))),
-                      shape=(3 * m, model.n_dofs))
-    return G.tocsr()
+    W = (pairs.ring_weights - pairs.blisk_weights).tocoo()
+    F = pairs.frame[W.row]                                    # (nnz, 3 directions, 3 components)
+    rows = 3 * W.row[:, None, None] + np.arange(3)[None, :, None]
+    cols = 3 * W.col[:, None, None] + np.arange(3)[None, None, :]
+    vals = F * W.data[:, None, None]
+    G = sp.coo_matrix((vals.ravel(), (np.broadcast_to(rows, vals.shape).ravel(),
+                                      np.broadcast_to(cols, vals.shape).ravel())),
+                      shape=(3 * len(pairs), model.n_dofs))
+    G = G.tocsr()
+    G.eliminate_zeros()
+    return G
 
 
 def stuck_contact_stiffness(model: SectorModel, contact_cfg: dict, closed=True) -> sp.csr_matrix:

@@ -2,9 +2,10 @@
 
 The retained (Craig–Bampton boundary) DoFs are
 
-* ``physical``: every DoF of both nodes of every contact pair and of the blade-tip forcing/response
-  node. They stay physical coordinates through every step, so the contact law and the forcing act on
-  them directly (``contact``, ``response`` name the two subsets);
+* ``physical``: every DoF of the nodes the contact pairs read (a node of the right cyclic face
+  replaced by its left partner) and of the blade-tip forcing/response node. They stay physical
+  coordinates through every step, so the contact law and the forcing act on them directly
+  (``contact``, ``response`` name the two subsets);
 * ``left``: the free DoFs of the left cyclic face that are not ``physical`` (a few contact nodes lie
   on the left cut: they are physical, not interface). Mead's constraint keeps them, and the interface
   reduction replaces them by a static lift from the physical DoFs plus ``n_if`` interface modes;
@@ -28,7 +29,7 @@ from ..fem.model import SectorModel, node_dofs
 class Partition:
     n_dofs: int              # all DoFs of the sector (clamped included)
     free: np.ndarray         # unclamped DoFs
-    contact: np.ndarray      # DoFs of both nodes of every pair (sorted)
+    contact: np.ndarray      # DoFs of the nodes the pairs read, right face folded (sorted)
     response: np.ndarray     # DoFs of the blade-tip node (x, y, z)
     physical: np.ndarray     # contact U response, sorted
     left: np.ndarray         # free left-face DoFs that are not physical, node-major
@@ -46,6 +47,16 @@ class Partition:
         return np.setdiff1d(self.free, self.boundary)
 
 
+def contact_nodes(model: SectorModel) -> np.ndarray:
+    """The nodes the contact pairs read, those of the right cyclic face replaced by their left partners
+    (Mead's constraint expresses them by those)."""
+    nodes = model.pairs.nodes
+    right_to_left = np.full(len(model.nodes), -1)
+    right_to_left[np.asarray(model.right_nodes)] = model.left_nodes
+    on_right = right_to_left[nodes] >= 0
+    return np.unique(np.concatenate([nodes[~on_right], right_to_left[nodes[on_right]]]))
+
+
 def partition(model: SectorModel) -> Partition:
     fixed = np.zeros(model.n_dofs, dtype=bool)
     fixed[model.fixed_dofs] = True
@@ -59,16 +70,14 @@ def partition(model: SectorModel) -> Partition:
     keep = ~left_fixed[:, 0]
     left_n, right_n = left_n[keep], right_n[keep]
 
-    pairs = model.pairs
-    contact = np.unique(node_dofs(np.concatenate([pairs.ring_node, pairs.blisk_node])))
+    contact = node_dofs(contact_nodes(model))
     response = node_dofs([model.tip_node])
     physical = np.union1d(contact, response)
     if np.any(fixed[physical]):
         raise ValueError("a contact or response node is clamped")
     right = node_dofs(right_n)
     if np.intersect1d(right, physical).size:
-        raise ValueError("a contact or response node lies on the right cyclic face "
-                         "(pairs on the cut must be folded onto the left face)")
+        raise ValueError("the response node lies on the right cyclic face")
     left_all = node_dofs(left_n)
     left = left_all[~np.isin(left_all, physical)]
     return Partition(n_dofs=model.n_dofs, free=free, contact=contact, response=response,

@@ -4,8 +4,10 @@
 Mead's constraint (ND of sigma_h) and the interface reduction, giving one Hermitian pair (K_h, M_h)
 per harmonic in the coordinates y = [p, r, eta] (physical contact + response DoFs, interface modes,
 fixed-interface modes). The physical block comes first and is the same in every harmonic, so the
-stacked relative contact displacements are d = B y with one real B (3m x n) for all harmonics
-(rows pair-major [d_n, d_t1, d_t2], d = F (u_ring - u_blisk) as ``relative_displacement_operator``).
+stacked relative contact displacements are d = B_h y (rows pair-major [d_n, d_t1, d_t2],
+d = F (u_ring - u_blisk) as ``relative_displacement_operator``): one real B for every harmonic when no
+pair reads the right cyclic face (``nodes`` pairs), else B_h folds those weights onto the left
+partners with the harmonic's phase (``contact_operator``).
 
 What the nonlinear stage receives (``reduced_dataset``) is the full modal basis of each (K_h, M_h):
 all omega_j^2 and the mass-normalised shapes restricted to B phi_j and to the response (tip Z) DoF.
@@ -30,10 +32,10 @@ import xarray as xr
 from ..fem.contact_law import spring_diagonal
 from ..fem.cyclic import interblade_phase, nodal_diameter
 from ..fem.linalg import eigh_rows
-from ..fem.model import SectorModel, relative_displacement_operator
+from ..fem.model import SectorModel, node_dofs, relative_displacement_operator
 from ..io import variable
 from .craig_bampton import CraigBampton, craig_bampton
-from .cyclic import mead
+from .cyclic import mead, rotation_z
 from .interface import reduce_interface
 from .partition import Partition, partition
 
@@ -51,6 +53,7 @@ class ReducedHarmonic:
     n_if: int
     n_fi: int
     size_mead: int          # coordinates after Mead's constraint (before the interface reduction)
+    B: np.ndarray           # (3m x size): stacked relative contact displacements (contact_operator)
 
     @property
     def size(self) -> int:
@@ -62,7 +65,6 @@ class ReducedSector:
     partition: Partition
     cb: CraigBampton
     harmonics: list[ReducedHarmonic]
-    B: np.ndarray                 # (3m x n) real: stacked relative contact displacements
     response_index: int           # coordinate of the tip Z DoF
     n_sectors: int
     engine_order: int
@@ -105,31 +107,46 @@ def reduce_harmonics(model: SectorModel, part: Partition, cb: CraigBampton, engi
         sigma = interblade_phase(h, model.n_sectors, engine_order)
         cm = mead(cb, part, model.sector_angle, sigma)
         ir = reduce_interface(cm, n_if)
+        B, response = contact_operator(model, part, ir.K.shape[0], sigma)
         out.append(ReducedHarmonic(harmonic=int(h), nd=nodal_diameter(h, model.n_sectors, engine_order),
                                    sigma=sigma, K=ir.K, M=ir.M, n_physical=ir.n_physical,
-                                   n_if=n_if, n_fi=cb.n_fi, size_mead=cm.size))
-    B, response = contact_operator(model, part, out[0].size)
-    return ReducedSector(partition=part, cb=cb, harmonics=out, B=B, response_index=response,
+                                   n_if=n_if, n_fi=cb.n_fi, size_mead=cm.size, B=B))
+    return ReducedSector(partition=part, cb=cb, harmonics=out, response_index=response,
                          n_sectors=model.n_sectors, engine_order=engine_order)
 
 
-def contact_operator(model: SectorModel, part: Partition, n: int) -> tuple[np.ndarray, int]:
-    """(B, response index): the stacked relative contact displacements of a reduced model of size n
-    whose first coordinates are ``part.physical``, and the coordinate of the tip Z DoF."""
-    G = relative_displacement_operator(model)
-    B = np.zeros((G.shape[0], n))
+def contact_operator(model: SectorModel, part: Partition, n: int, sigma: float) -> tuple[np.ndarray, int]:
+    """(B_h, response index): the stacked relative contact displacements of a reduced model of size n
+    whose first coordinates are ``part.physical``, for inter-sector phase ``sigma``, and the coordinate of
+    the tip Z DoF. Pair weights on a right-face node read its left partner through Mead's constraint,
+    u_R = e^{i sigma} R_z(2 pi / N) u_L (complex B_h unless sigma is 0 or pi; real and the same for
+    every harmonic when no pair reads the right face)."""
+    G = relative_displacement_operator(model).tocsc()
+    right = node_dofs(part.right_nodes)
+    Gr = G[:, right]
+    B = np.zeros((G.shape[0], n), dtype=complex if Gr.nnz and abs(np.sin(sigma)) > 1e-14 else float)
     B[:, :len(part.physical)] = G[:, part.physical].toarray()
-    if abs(G[:, np.setdiff1d(np.arange(model.n_dofs), part.physical)]).sum() != 0:
+    if Gr.nnz:
+        phase = np.exp(1j * sigma) if B.dtype == complex else np.cos(sigma)
+        folded = Gr.toarray().reshape(-1, len(part.right_nodes), 3) @ rotation_z(model.sector_angle)
+        at = np.searchsorted(part.physical, node_dofs(part.left_nodes)).reshape(-1, 3)
+        read = np.abs(folded).sum(axis=(0, 2)) > 0
+        if not np.all(np.isin(node_dofs(part.left_nodes[read]), part.physical)):
+            raise AssertionError("a pair reads a right-face node whose left partner is not physical")
+        for k in np.flatnonzero(read):
+            B[:, at[k]] += phase * folded[:, k]
+    rest = np.setdiff1d(np.arange(model.n_dofs), np.union1d(part.physical, right))
+    if abs(G[:, rest]).sum() != 0:
         raise AssertionError("contact operator touches non-physical DoFs")
     return B, int(np.searchsorted(part.physical, model.response_dof()))
 
 
 # --- stuck contact -------------------------------------------------------------------------------
 
-def stuck_matrices(rh: ReducedHarmonic, B: np.ndarray, kn, kt) -> tuple[np.ndarray, np.ndarray]:
-    """(K_h + B^T diag(kn, kt, kt) B, M_h): the reduced model with stuck contact springs."""
-    k = spring_diagonal(kn, kt, B.shape[0] // 3).ravel()
-    return rh.K + B.T @ (k[:, None] * B), rh.M
+def stuck_matrices(rh: ReducedHarmonic, kn, kt) -> tuple[np.ndarray, np.ndarray]:
+    """(K_h + B_h^H diag(kn, kt, kt) B_h, M_h): the reduced model with stuck contact springs."""
+    k = spring_diagonal(kn, kt, rh.B.shape[0] // 3).ravel()
+    return rh.K + rh.B.conj().T @ (k[:, None] * rh.B), rh.M
 
 
 def eigenfrequencies(K: np.ndarray, M: np.ndarray, n_modes: int | None = None) -> np.ndarray:
@@ -139,8 +156,8 @@ def eigenfrequencies(K: np.ndarray, M: np.ndarray, n_modes: int | None = None) -
     return np.sign(w2) * np.sqrt(np.abs(w2)) / (2 * np.pi)
 
 
-def stuck_frequencies(rh: ReducedHarmonic, B: np.ndarray, kn, kt, n_modes: int | None = None):
-    return eigenfrequencies(*stuck_matrices(rh, B, kn, kt), n_modes)
+def stuck_frequencies(rh: ReducedHarmonic, kn, kt, n_modes: int | None = None):
+    return eigenfrequencies(*stuck_matrices(rh, kn, kt), n_modes)
 
 
 # --- modal basis (what the nonlinear stage receives) ---------------------------------------------
@@ -152,9 +169,10 @@ class ModalBasis:
     response: np.ndarray    # (n,) complex: tip Z component of phi_j
 
 
-def modal_basis(rh: ReducedHarmonic, B: np.ndarray, response_index: int) -> ModalBasis:
-    """All modes of (K_h, M_h), kept at the contact rows B and the response coordinate only."""
-    rows = np.zeros((B.shape[0] + 1, B.shape[1]))
+def modal_basis(rh: ReducedHarmonic, response_index: int) -> ModalBasis:
+    """All modes of (K_h, M_h), kept at the contact rows B_h and the response coordinate only."""
+    B = rh.B
+    rows = np.zeros((B.shape[0] + 1, B.shape[1]), dtype=B.dtype)
     rows[:-1] = B
     rows[-1, response_index] = 1.0
     w2, shapes = eigh_rows(rh.K, rh.M, rows)
@@ -177,9 +195,9 @@ def reduced_dataset(rs: ReducedSector, kappa, bases: list[ModalBasis] | None = N
                     attrs: dict | None = None) -> xr.Dataset:
     """The reduced.nc contract (docs/design.md §4): per harmonic, all omega^2 and the mass-normalised mode
     shapes at the contact coordinates and the response DoF (complex split into real/imag)."""
-    bases = bases or [modal_basis(rh, rs.B, rs.response_index) for rh in rs.harmonics]
+    bases = bases or [modal_basis(rh, rs.response_index) for rh in rs.harmonics]
     hs = rs.harmonics
-    m = rs.B.shape[0] // 3
+    m = hs[0].B.shape[0] // 3
     n = hs[0].size
     contact = np.stack([b.contact for b in bases])
     response = np.stack([b.response for b in bases])

@@ -43,7 +43,7 @@ def run_reduced(config: dict, kappa, superelement=None) -> xr.Dataset:
     ``superelement`` (a file of ``reduction.superelement``) on the fixed substructure."""
     t0 = time.perf_counter()
     rs = _reduced_sector(config, kappa, superelement)
-    bases = [modal_basis(rh, rs.B, rs.response_index) for rh in rs.harmonics]
+    bases = [modal_basis(rh, rs.response_index) for rh in rs.harmonics]
     stiffness = "linear elastic at rest (no prestress)"
     ds = reduced_dataset(rs, kappa, bases,
                          attrs={"stiffness": stiffness, "wall_time_s": time.perf_counter() - t0,

@@ -99,19 +99,19 @@ def reduce_on_superelement(model: SectorModel, split: SectorSplit, se: SuperElem
         p = np.searchsorted(keep, np.searchsorted(independent, part.physical))
         interior = np.setdiff1d(np.arange(K.shape[0]), p)
         cb = condense(K, M, p, interior, n_if + n_fi)
+        B, response = contact_operator(model, part, cb.K.shape[0], float(se.sigma[k]))
         out.append(ReducedHarmonic(harmonic=int(h), nd=nodal_diameter(int(h), model.n_sectors, engine_order),
                                    sigma=float(se.sigma[k]), K=cb.K, M=cb.M, n_physical=len(p),
-                                   n_if=n_if, n_fi=n_fi, size_mead=K.shape[0]))
+                                   n_if=n_if, n_fi=n_fi, size_mead=K.shape[0], B=B))
         sizes = {"full": len(part.free), "craig_bampton": K.shape[0], "mead": K.shape[0],
                  "interface": cb.K.shape[0]}
-    B, response = contact_operator(model, part, out[0].size)
-    return SubstructuredSector(harmonics=out, B=B, response_index=response,
+    return SubstructuredSector(harmonics=out, response_index=response,
                                n_sectors=model.n_sectors, engine_order=engine_order, dof_counts=sizes)
 
 
 class SubstructuredSector:
     """What ``reduced_dataset`` reads of a reduced sector, for the substructured chain."""
 
-    def __init__(self, harmonics, B, response_index, n_sectors, engine_order, dof_counts):
-        self.harmonics, self.B, self.response_index = harmonics, B, response_index
+    def __init__(self, harmonics, response_index, n_sectors, engine_order, dof_counts):
+        self.harmonics, self.response_index = harmonics, response_index
         self.n_sectors, self.engine_order, self.dof_counts = n_sectors, engine_order, dof_counts

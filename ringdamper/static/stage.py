@@ -173,15 +173,16 @@ def failed_static(config: dict, kappa, reason: str, n_pairs: int) -> xr.Dataset:
 
 def static_fields(model: SectorModel, result: StaticContactResult | None = None,
                   prob: StaticProblem | None = None) -> dict:
-    """Point fields for ParaView: displacement, and N0 / gap on both nodes of each pair; NaN where
+    """Point fields for ParaView: displacement, and N0 / gap of the pair weighing each node most; NaN where
     the solve gave no value (no ``result``, or a non-finite solution)."""
     n = len(model.nodes)
     n0 = np.full(n, np.nan if result is None else 0.0)
     gap = n0.copy()
     if result is not None:
-        for nodes in (model.pairs.ring_node, model.pairs.blisk_node):
-            n0[nodes] = result.N0
-            gap[nodes] = result.gap
+        pair = model.pairs.pair_of_node(n)
+        read = pair >= 0
+        n0[read] = result.N0[pair[read]]
+        gap[read] = result.gap[pair[read]]
     solved = result is not None and np.all(np.isfinite(result.u))
     u = (prob.T @ result.u).reshape(-1, 3) if solved else np.full((n, 3), np.nan)
     return {"displacement": u, "N0": n0, "gap": gap}

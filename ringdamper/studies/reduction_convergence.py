@@ -48,7 +48,7 @@ def full_receptance(model: SectorModel, sigma: float, omegas) -> list[np.ndarray
 
 
 def reduced_receptance(K, M, B, omegas) -> list[np.ndarray]:
-    return [B @ sla.solve(K - w**2 * M, B.T.astype(K.dtype)) for w in omegas]
+    return [B @ sla.solve(K - w**2 * M, B.conj().T.astype(np.result_type(K, B))) for w in omegas]
 
 
 def _rel(a, b):
@@ -92,12 +92,12 @@ def convergence_study(model: SectorModel, engine_order: int, kn, kt, n_fi_values
             worst = 0.0
             for rh in rs.harmonics:
                 f_free = eigenfrequencies(rh.K, rh.M, n_modes)
-                f_stuck = eigenfrequencies(*stuck_matrices(rh, rs.B, kn, kt), n_modes)
+                f_stuck = eigenfrequencies(*stuck_matrices(rh, kn, kt), n_modes)
                 worst = max(worst, _rel(f_free, ref[rh.harmonic]["free"]).max(),
                             _rel(f_stuck, ref[rh.harmonic]["stuck"]).max())
                 if rh.harmonic == target_harmonic:
                     target_err = _rel(f_stuck[target], f_target)
-                    H_red = reduced_receptance(rh.K, rh.M, rs.B, omegas)
+                    H_red = reduced_receptance(rh.K, rh.M, rh.B, omegas)
                     rec_err = [float(np.linalg.norm(a - b) / np.linalg.norm(b))
                                    for a, b in zip(H_red, H_full)]
             rows.append({"n_fi": n_fi, "n_if": n_if, "size": rs.harmonics[0].size,

@@ -31,6 +31,18 @@ def test_eigenvalues_bitwise_and_rows_of_mass_normalised_modes(complex_):
     assert np.iscomplexobj(rows) == complex_
 
 
+def test_complex_rows_of_a_complex_pair():
+    """Complex rows (the contact operator of a travelling-wave harmonic): R Phi as above."""
+    K, M, R = _pair(60, True, seed=6)
+    R = R + 1j * np.random.default_rng(7).standard_normal(R.shape)
+    w_ref, phi = sla.eigh(K, M)
+    w, rows = eigh_rows(K, M, R)
+    ref = R @ phi
+    phase = np.einsum("ij,ij->j", ref.conj(), rows)
+    phase /= np.abs(phase)
+    assert np.abs(rows / phase - ref).max() <= 1e-10 * np.abs(ref).max()
+
+
 def test_not_positive_definite_mass_is_refused():
     K, M, R = _pair(10, False, seed=5)
     with pytest.raises(np.linalg.LinAlgError, match="not positive definite"):

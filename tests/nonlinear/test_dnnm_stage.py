@@ -29,7 +29,7 @@ def chain(small_config):
     result, prob = solve_static(model, cfg)
     static = static_dataset(model, result, prob, (0.0, 0.0, 0.0), cfg["operation"]["speed_rpm"])
     rs = reduce_sector(model, cfg["operation"]["engine_order"], n_harmonics=3, n_fi=20, n_if=10)
-    reduced = reduced_dataset(rs, (0.0, 0.0, 0.0), [modal_basis(rh, rs.B, rs.response_index)
+    reduced = reduced_dataset(rs, (0.0, 0.0, 0.0), [modal_basis(rh, rs.response_index)
                                                     for rh in rs.harmonics])
     structure = structure_from_reduced(reduced, 1)
     contacts = contacts_from_static(static, cfg["contact"])

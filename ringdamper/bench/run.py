@@ -222,6 +222,14 @@ def _nonlinear_rows(config: dict) -> dict:
     return run(config)
 
 
+def _contact_pairs(config: dict) -> dict:
+    """The contact-pair dial on the default ring: node pairs and grids of 18 to 192 cell pairs
+    (ringdamper.bench.contact_pairs)."""
+    from ringdamper.bench.contact_pairs import run
+
+    return run(config)
+
+
 def _coulomb(config: dict) -> dict:
     """The Coulomb law's AFT on the default ring's backbone states, against the former march
     (ringdamper.bench.coulomb)."""
@@ -246,6 +254,7 @@ def _surrogate(config: dict) -> dict:
 
 BENCHMARKS = {"fe_model": _fe_chain, "static": _static_chain, "geometry_chain": _geometry_chain,
               "reduction": _reduction, "dnnm": _dnnm, "nonlinear_rows": _nonlinear_rows,
+              "contact_pairs": _contact_pairs,
               "coulomb": _coulomb, "library": _library,
               "dynamics_synthetic": _dynamics_synthetic,
               "static_synthetic": _static_synthetic,

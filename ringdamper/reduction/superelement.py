@@ -60,8 +60,8 @@ BLISK_RING_KEYS = ("width", "axial_center")
 
 
 def blisk_config(config: dict) -> dict:
-    """The part of ``config`` the fixed substructure depends on (:data:`BLISK_SECTIONS` and the
-    ring's axial band), keys sorted."""
+    """The part of ``config`` the fixed substructure depends on (:data:`BLISK_SECTIONS` without the
+    contact pairs, which live in the morph zone, and the ring's axial band), keys sorted."""
     out: dict = {}
     for name in BLISK_SECTIONS:
         section, _, key = name.partition(".")
@@ -72,6 +72,7 @@ def blisk_config(config: dict) -> dict:
         else:
             out[section] = config[section]
     out["geometry"]["ring"] = {k: config["geometry"]["ring"][k] for k in BLISK_RING_KEYS}
+    out["mesh"] = {k: v for k, v in out["mesh"].items() if k != "contact_pairs"}   # pairs: morph zone only
     return json.loads(json.dumps(out, sort_keys=True))
 
 

@@ -49,8 +49,15 @@ def test_static_contact_state_equals_the_monolithic_one(setup, monolithic):
     assert np.abs(d - d_ref).max() <= 1e-8 * np.abs(d_ref).max()
 
 
-def test_stuck_frequencies_equal_the_monolithic_ones(setup, monolithic):
+@pytest.mark.parametrize("pairs", [None, {"placement": "grid", "n_theta": 9, "n_axial": 4}])
+def test_stuck_frequencies_equal_the_monolithic_ones(setup, monolithic, pairs):
+    """Node pairs, and grid pairs (weights on the right cut folded per harmonic) on the same
+    super-element: the pairs live in the morph zone, the fixed part never sees them."""
     config, se = setup
+    if pairs is not None:
+        config = copy.deepcopy(config)
+        config["mesh"]["contact_pairs"] = pairs
+        monolithic = build_model(build_sector(config, KAPPA), config)
     counts = {"n_fi": config["reduction"]["n_fixed_interface_modes"],
               "n_if": config["reduction"]["n_interface_modes"]}
     model, split = morph_model(config, KAPPA, se)

@@ -48,6 +48,7 @@ def test_a_second_ring_reads_the_super_element_without_rebuilding_it(campaign):
     ("operation", "speed_rpm", 2500.0, True),
     ("ring", "thickness", 0.0042, False),
     ("ring", "radial_clearance", 1.0e-5, False),
+    ("mesh", "contact_pairs", {"placement": "grid", "n_theta": 9, "n_axial": 4}, False),
 ])
 def test_blisk_edits_rebuild_it_and_ring_edits_do_not(campaign, section, key, value, rebuilt):
     results, config, gids, folder = campaign

@@ -1,8 +1,11 @@
 """Benchmark of the contact-pair dial (``mesh.contact_pairs``, :mod:`ringdamper.fem.contact_pairs`) on the
 default ring at the default mesh and the campaign's dNNM settings: the node pairs and grids of cell pairs
 from 18 to 192, each with its pair count, the nodes the pairs read, the CPU of the FE stages (static and
-reduction) and of the dNNM, the stuck target frequency and the backbone's ζ_max with ω0 and |q_res,z|
-there, and each one's relative change against the finest grid. Returns the figures; asserts nothing.
+reduction) and of the dNNM, the stuck target frequency, and what users read off the backbone
+(:func:`ringdamper.studies.fidelity.quantities.user_quantities`: ζ_max and |q_res,z| there, the
+frequencies at the first and last response level, |q_res,z| at Table 3's forcing levels γ₁..γ₄ read on
+the finest grid's backbone), each with its relative change against the finest grid. Returns the
+figures; asserts nothing.
 """
 from __future__ import annotations
 
@@ -14,7 +17,7 @@ import numpy as np
 GRIDS = ((6, 3), (9, 4), (12, 5), (18, 6), (24, 8))   # n_theta x n_axial; the last is the reference
 
 
-def _variant(config: dict, placement: dict) -> dict:
+def _variant(config: dict, placement: dict) -> tuple:
     from ringdamper.bench.dnnm import ring_inputs
     from ringdamper.fem.model import build_model
     from ringdamper.geometry.sector import build_sector
@@ -37,20 +40,23 @@ def _variant(config: dict, placement: dict) -> dict:
     start = time.process_time()
     ds = run_dnnm(reduced, static, cfg, target_hz, omega_stuck)
     dnnm_cpu = time.process_time() - start
-    i = int(np.nanargmax(ds.zeta.values))
-    return {**placement, "pairs": int(static.sizes["pair"]),
-            "nodes_read": int(len(build_model(build_sector(cfg, (0.0, 0.0, 0.0)), cfg).pairs.nodes)),
-            "fe_cpu_s": fe_cpu, "dnnm_cpu_s": dnnm_cpu, "stuck_hz": float(omega_stuck / (2 * np.pi)),
-            "zeta_max": float(ds.zeta.values[i]), "omega0_at_zeta_max": float(ds.omega0.values[i]),
-            "q_res_z_at_zeta_max": float(ds.q_res_z.values[i])}
+    return ds, {**placement, "pairs": int(static.sizes["pair"]),
+                "nodes_read": int(len(build_model(build_sector(cfg, (0.0, 0.0, 0.0)), cfg).pairs.nodes)),
+                "fe_cpu_s": fe_cpu, "dnnm_cpu_s": dnnm_cpu, "stuck_hz": float(omega_stuck / (2 * np.pi))}
 
 
 def run(config: dict) -> dict:
     """The figures of the module docstring for the default ring of ``config``."""
-    rows = [_variant(config, {"placement": "nodes"})]
-    rows += [_variant(config, {"placement": "grid", "n_theta": a, "n_axial": b}) for a, b in GRIDS]
-    reference = rows[-1]
-    for row in rows:
-        for key in ("stuck_hz", "zeta_max", "omega0_at_zeta_max", "q_res_z_at_zeta_max"):
-            row[f"{key}_change"] = row[key] / reference[key] - 1.0
-    return {"variants": rows, "reference": f"grid {GRIDS[-1][0]} x {GRIDS[-1][1]}"}
+    from ringdamper.studies.fidelity.quantities import gamma_at, relative_errors, user_quantities
+
+    placements = [{"placement": "nodes"}] + [{"placement": "grid", "n_theta": a, "n_axial": b} for a, b in GRIDS]
+    cases = [_variant(config, p) for p in placements]
+    gammas = gamma_at(cases[-1][0], config["frf"]["target_amplitudes"])
+    args = (config["sensitivity"]["levels"], gammas, config["exploration"]["optimum_max_level"])
+    reference = {**user_quantities(cases[-1][0], *args), "stuck_hz": cases[-1][1]["stuck_hz"]}
+    rows = []
+    for ds, row in cases:
+        values = {**user_quantities(ds, *args), "stuck_hz": row["stuck_hz"]}
+        rows.append({**row, **values, **{f"{k}_error": v for k, v in relative_errors(values, reference).items()}})
+    return {"variants": rows, "reference": f"grid {GRIDS[-1][0]} x {GRIDS[-1][1]}",
+            "gammas_n": gammas.tolist()}

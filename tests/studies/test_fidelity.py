@@ -5,8 +5,11 @@ import pandas as pd
 import pytest
 import yaml
 
+from ringdamper.fem.model import build_model
+from ringdamper.geometry.sector import build_sector
 from ringdamper.nonlinear.harmonic_balance.eebm import eebm
 from ringdamper.nonlinear.harmonic_balance.epmc import epmc
+from ringdamper.studies.fidelity.mesh_backbone import mesh_config
 from ringdamper.studies.fidelity.quantities import relative_errors, richardson, user_quantities
 from ringdamper.studies.fidelity.summary import choose
 from ringdamper.studies.fidelity.surrogate import backbone_dataset, lhs_design
@@ -107,6 +110,21 @@ def test_fidelity_rules_run_on_the_coarse_configuration(tmp_path):
     assert backbone.pairs[2] > backbone.pairs[1] and backbone.error_max[2] == 0
     assert backbone.freq_low[2] < backbone.freq_low[1]
     assert np.isfinite(backbone.zeta_max).all() and (backbone.zeta_max > 0).all()
+
+
+def test_mesh_backbone_keeps_its_contact_pairs_on_every_mesh(small_config):
+    """With ``fidelity.mesh_backbone.contact_pairs`` the refined meshes carry the same grid of pairs
+    (same count, same positions to the mesh's discretisation of the surface); without it the node
+    pairs refine with the mesh."""
+    cfg = {**small_config, "fidelity": {"mesh_backbone": {**SMALL_FIDELITY["mesh_backbone"],
+                                                          "contact_pairs": {"placement": "grid", "n_theta": 4,
+                                                                            "n_axial": 2}}}}
+    pairs = [build_model(build_sector(c, (0.0, 0.0, 0.0)), c).pairs for c in (mesh_config(cfg, f) for f in (1, 2))]
+    assert len(pairs[0]) == len(pairs[1]) == 8
+    assert np.abs(pairs[0].position - pairs[1].position).max() < 1e-3 * np.abs(pairs[0].position).max()
+    cfg["fidelity"]["mesh_backbone"].pop("contact_pairs")
+    nodes = [len(build_model(build_sector(c, (0.0, 0.0, 0.0)), c).pairs) for c in (mesh_config(cfg, f) for f in (1, 2))]
+    assert nodes[1] > nodes[0]
 
 
 def test_choice_is_the_cheapest_accurate_setting_beyond_timing_noise():

@@ -3,12 +3,13 @@
 The mesh levels of :mod:`.mesh` are modal only (frequencies of the stuck target ND). Here the chain
 that produces the campaign's results (static contact, reduction, dNNM + E-EBM; :mod:`.chain`) runs
 on the campaign's mesh refined by each factor of ``fidelity.mesh_backbone.factors`` (every element
-count times the factor, element order kept; the contact pairs refine with it: 70 → 252 on the 2×
-27-node mesh), for the default ring, at ``n_harmonics`` with ``n_time_samples`` AFT samples. The
-harmonic count is low because the cost of a dNNM Newton step grows with the cube of its
-3·pairs·(2H + 1) contact unknowns: 2268 on the 2× mesh at H = 1, 5292 at H = 3 (the harmonics dial
-measures H on the campaign's mesh). The quantities are those of :mod:`.quantities`, with the forcing
-levels read on the finest mesh's backbone; errors are relative to the finest factor.
+count times the factor, element order kept), for the default ring, at ``n_harmonics`` with
+``n_time_samples`` AFT samples. With ``contact_pairs`` (a ``mesh.contact_pairs`` grid) every mesh
+carries the same pairs, so the study measures the structure's discretisation alone; without it the
+node pairs refine with the mesh (70 → 252 on the 2× 27-node mesh), and a dNNM Newton step's cost
+grows with the cube of its 3·pairs·(2H + 1) contact unknowns. The quantities are those of
+:mod:`.quantities`, with the forcing levels read on the finest mesh's backbone; errors are relative
+to the finest factor.
 """
 
 from __future__ import annotations
@@ -24,12 +25,14 @@ from .summary import case_summary
 
 def mesh_config(config: dict, factor: int) -> dict:
     """The campaign configuration on the mesh refined by ``factor``, at the study's harmonics (fixed:
-    no adaptive truncation)."""
+    no adaptive truncation) and contact pairs (when it sets them)."""
     settings = config["fidelity"]["mesh_backbone"]
     out = refined(config, factor)          # a deep copy
     out["dnnm"]["n_harmonics"] = out["reduction"]["n_harmonics"] = settings["n_harmonics"]
     out["dnnm"]["max_harmonics"] = settings["n_harmonics"]
     out["dnnm"]["n_time_samples"] = settings["n_time_samples"]
+    if "contact_pairs" in settings:
+        out["mesh"]["contact_pairs"] = settings["contact_pairs"]
     return out
 
 

@@ -214,6 +214,18 @@ def reference_gids():
     return {label: gid_of(k) for label, k in REFERENCE_RINGS.items()}
 
 
+# A geometry's chain is one cluster job (group geometry_<gid>) when its kappa is known when the DAG is
+# first built. The rings a checkpoint adds (the optimum, an adaptive round's) run ungrouped: Snakemake
+# 9 replaces their jobs when it re-evaluates the DAG after the checkpoint and does not re-register the
+# new jobs' group, so a grouped one can crash the scheduler (KeyError in DAG.update_ready; upstream
+# snakemake issue 4202).
+def chain_group(wildcards):
+    """Cluster job group of geometry ``gid``'s static -> reduced -> dnnm chain, or None."""
+    if wildcards.gid == OPTIMUM_GID or round_of(wildcards.gid) is not None:
+        return None
+    return f"geometry_{wildcards.gid}"
+
+
 def frf_curves(gid):
     """Forced-response curves of geometry ``gid``, one per forcing level (1, 2, ...)."""
     levels = range(1, len(config["frf"]["target_amplitudes"]) + 1)

@@ -39,7 +39,7 @@ rule dnnm:
         mem_mb=scaled(1000),
         runtime=15,
     group:
-        "geometry_{gid}"
+        chain_group
     log:
         log_file("dnnm/{gid}"),
     benchmark:

@@ -34,7 +34,7 @@ rule reduced:
         mem_mb=scaled(1000),
         runtime=5,
     group:
-        "geometry_{gid}"
+        chain_group
     log:
         log_file("reduced/{gid}"),
     benchmark:

@@ -18,7 +18,7 @@ rule static:
         mem_mb=scaled(600),
         runtime=5,
     group:
-        "geometry_{gid}"
+        chain_group
     log:
         log_file("static/{gid}"),
     benchmark:

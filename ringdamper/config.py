@@ -232,9 +232,18 @@ def resolve_imported_mesh(config: dict, config_dir) -> dict:
     return config
 
 
+#: ``mesh.contact_pairs`` when the config has none: one pair on every node of the ring's upper surface.
+NODE_PAIRS = {"placement": "nodes"}
+
+
+def contact_pairs_setting(config: dict) -> dict:
+    """``mesh.contact_pairs`` of ``config``, :data:`NODE_PAIRS` when absent."""
+    return config["mesh"].get("contact_pairs", NODE_PAIRS)
+
+
 def _contact_pairs_errors(config: dict) -> list[str]:
     """``mesh.contact_pairs``: the grid needs its two cell counts, the node placement takes none."""
-    pairs = config["mesh"].get("contact_pairs", {"placement": "nodes"})
+    pairs = contact_pairs_setting(config)
     counts = [key for key in ("n_theta", "n_axial") if key in pairs]
     if pairs["placement"] == "grid" and len(counts) < 2:
         return ["mesh.contact_pairs: placement 'grid' needs n_theta and n_axial (cells in theta over the "

@@ -22,6 +22,7 @@ import scipy.sparse as sp
 from scipy.spatial import cKDTree
 from skfem import Basis, ElementHex1, ElementHex2, FacetBasis, LinearForm, asm
 
+from ..config import contact_pairs_setting
 from ..geometry.sector import BODY_RING, MERGE_TOL, SectorMesh
 from ..geometry.shape import upper_slope
 from .contact_law import spring_diagonal, stuck_pair_stiffness
@@ -30,7 +31,6 @@ from .elasticity import mass_matrix, tangent_stiffness
 
 INTORDER = {1: 3, 2: 5}  # Gauss rule exact for the mass matrix of each order (docs/design.md §9)
 ELEMENTS = {1: ElementHex1, 2: ElementHex2}
-NODE_PAIRS = {"placement": "nodes"}
 
 
 class CyclicSectorDofs:
@@ -193,8 +193,7 @@ def build_model(geometry: SectorMesh, config: dict, elements: np.ndarray | None 
     node_body[np.unique(scalar.dofs.element_dofs[:, geometry.body == BODY_RING])] = BODY_RING
     fixed = np.unique(scalar.get_dofs(_facets_within(geometry.mesh, geometry.sets["bore"])).all())
     left, right = _cyclic_nodes(nodes, node_body, geometry.half_angle)
-    pairs = _contact_pairs(geometry, scalar, nodes, node_body, left, right,
-                           config["mesh"].get("contact_pairs", NODE_PAIRS))
+    pairs = _contact_pairs(geometry, scalar, nodes, node_body, left, right, contact_pairs_setting(config))
     tip = int(np.argmin(np.linalg.norm(nodes - geometry.vertices[geometry.tip_vertex], axis=1)))
     return SectorModel(
         geometry=geometry, basis=scalar, nodes=nodes, node_body=node_body, element_order=order,

@@ -7,7 +7,7 @@ fixed-interface modes). The physical block comes first and is the same in every 
 stacked relative contact displacements are d = B_h y (rows pair-major [d_n, d_t1, d_t2],
 d = F (u_ring - u_blisk) as ``relative_displacement_operator``): one real B for every harmonic when no
 pair reads the right cyclic face (``nodes`` pairs), else B_h folds those weights onto the left
-partners with the harmonic's phase (``contact_operator``).
+partners with the harmonic's phase (``ContactOperator``).
 
 What the nonlinear stage receives (``reduced_dataset``) is the full modal basis of each (K_h, M_h):
 all omega_j^2 and the mass-normalised shapes restricted to B phi_j and to the response (tip Z) DoF.
@@ -53,7 +53,7 @@ class ReducedHarmonic:
     n_if: int
     n_fi: int
     size_mead: int          # coordinates after Mead's constraint (before the interface reduction)
-    B: np.ndarray           # (3m x size): stacked relative contact displacements (contact_operator)
+    B: np.ndarray           # (3m x size): stacked relative contact displacements (ContactOperator.at)
 
     @property
     def size(self) -> int:
@@ -102,43 +102,57 @@ def reduce_sector(model: SectorModel, engine_order: int, n_fi: int, n_if: int,
 def reduce_harmonics(model: SectorModel, part: Partition, cb: CraigBampton, engine_order: int,
                      harmonics, n_if: int) -> ReducedSector:
     """Steps 2 and 3 (Mead, interface) of every harmonic on a given CB model."""
-    out = []
+    out, contact = [], ContactOperator.of(model, part)
     for h in harmonics:
         sigma = interblade_phase(h, model.n_sectors, engine_order)
         cm = mead(cb, part, model.sector_angle, sigma)
         ir = reduce_interface(cm, n_if)
-        B, response = contact_operator(model, part, ir.K.shape[0], sigma)
         out.append(ReducedHarmonic(harmonic=int(h), nd=nodal_diameter(h, model.n_sectors, engine_order),
                                    sigma=sigma, K=ir.K, M=ir.M, n_physical=ir.n_physical,
-                                   n_if=n_if, n_fi=cb.n_fi, size_mead=cm.size, B=B))
-    return ReducedSector(partition=part, cb=cb, harmonics=out, response_index=response,
+                                   n_if=n_if, n_fi=cb.n_fi, size_mead=cm.size, B=contact.at(sigma, ir.K.shape[0])))
+    return ReducedSector(partition=part, cb=cb, harmonics=out, response_index=contact.response_index,
                          n_sectors=model.n_sectors, engine_order=engine_order)
 
 
-def contact_operator(model: SectorModel, part: Partition, n: int, sigma: float) -> tuple[np.ndarray, int]:
-    """(B_h, response index): the stacked relative contact displacements of a reduced model of size n
-    whose first coordinates are ``part.physical``, for inter-sector phase ``sigma``, and the coordinate of
-    the tip Z DoF. Pair weights on a right-face node read its left partner through Mead's constraint,
-    u_R = e^{i sigma} R_z(2 pi / N) u_L (complex B_h unless sigma is 0 or pi; real and the same for
-    every harmonic when no pair reads the right face)."""
-    G = relative_displacement_operator(model).tocsc()
-    right = node_dofs(part.right_nodes)
-    Gr = G[:, right]
-    B = np.zeros((G.shape[0], n), dtype=complex if Gr.nnz and abs(np.sin(sigma)) > 1e-14 else float)
-    B[:, :len(part.physical)] = G[:, part.physical].toarray()
-    if Gr.nnz:
-        phase = np.exp(1j * sigma) if B.dtype == complex else np.cos(sigma)
-        folded = Gr.toarray().reshape(-1, len(part.right_nodes), 3) @ rotation_z(model.sector_angle)
-        at = np.searchsorted(part.physical, node_dofs(part.left_nodes)).reshape(-1, 3)
-        read = np.abs(folded).sum(axis=(0, 2)) > 0
-        if not np.all(np.isin(node_dofs(part.left_nodes[read]), part.physical)):
-            raise AssertionError("a pair reads a right-face node whose left partner is not physical")
-        for k in np.flatnonzero(read):
-            B[:, at[k]] += phase * folded[:, k]
-    rest = np.setdiff1d(np.arange(model.n_dofs), np.union1d(part.physical, right))
-    if abs(G[:, rest]).sum() != 0:
-        raise AssertionError("contact operator touches non-physical DoFs")
-    return B, int(np.searchsorted(part.physical, model.response_dof()))
+@dataclass
+class ContactOperator:
+    """The stacked relative contact displacements G u on the physical DoFs ``part.physical``, built once
+    per sector: the block that reads physical DoFs and the block that reads the right cyclic face, folded
+    onto the left partners' DoFs through Mead's constraint u_R = e^{i sigma} R_z(2 pi / N) u_L without its
+    phase. ``at(sigma, n)`` adds the phase of one harmonic."""
+    physical: np.ndarray          # (3m x n_physical) G on part.physical
+    folded: np.ndarray | None     # (3m x n_physical) right-face weights on their left partners, or None
+    response_index: int           # coordinate of the tip Z DoF
+
+    @classmethod
+    def of(cls, model: SectorModel, part: Partition) -> "ContactOperator":
+        G = relative_displacement_operator(model).tocsc()
+        right = node_dofs(part.right_nodes)
+        rest = np.setdiff1d(np.arange(model.n_dofs), np.union1d(part.physical, right))
+        if abs(G[:, rest]).sum() != 0:
+            raise AssertionError("contact operator touches non-physical DoFs")
+        Gr, folded = G[:, right], None
+        if Gr.nnz:
+            on_left = Gr.toarray().reshape(-1, len(part.right_nodes), 3) @ rotation_z(model.sector_angle)
+            read = np.abs(on_left).sum(axis=(0, 2)) > 0
+            if not np.all(np.isin(node_dofs(part.left_nodes[read]), part.physical)):
+                raise AssertionError("a pair reads a right-face node whose left partner is not physical")
+            at = np.searchsorted(part.physical, node_dofs(part.left_nodes)).reshape(-1, 3)
+            folded = np.zeros((G.shape[0], len(part.physical)))
+            for k in np.flatnonzero(read):
+                folded[:, at[k]] += on_left[:, k]
+        return cls(physical=G[:, part.physical].toarray(), folded=folded,
+                   response_index=int(np.searchsorted(part.physical, model.response_dof())))
+
+    def at(self, sigma: float, n: int) -> np.ndarray:
+        """B_h of a reduced model of size ``n`` whose first coordinates are the physical DoFs: complex
+        unless sigma is 0 or pi or no pair reads the right face."""
+        complex_phase = self.folded is not None and abs(np.sin(sigma)) > 1e-14
+        B = np.zeros((self.physical.shape[0], n), dtype=complex if complex_phase else float)
+        B[:, :self.physical.shape[1]] = self.physical
+        if self.folded is not None:
+            B[:, :self.physical.shape[1]] += (np.exp(1j * sigma) if complex_phase else np.cos(sigma)) * self.folded
+        return B
 
 
 # --- stuck contact -------------------------------------------------------------------------------

@@ -26,7 +26,7 @@ from ..geometry.sector import build_sector
 from ..geometry.split import SectorSplit, split_sector
 from .hermitian_cb import condense
 from .partition import partition
-from .reduced import ReducedHarmonic, contact_operator
+from .reduced import ContactOperator, ReducedHarmonic
 from .superelement import SuperElement, config_hash, coordinates, fixed_positions_hash, sector_transform
 
 
@@ -93,19 +93,19 @@ def reduce_on_superelement(model: SectorModel, split: SectorSplit, se: SuperElem
                            engine_order: int, n_fi: int, n_if: int) -> "SubstructuredSector":
     """Every harmonic of ``se`` coupled and reduced onto the physical DoFs (module docstring)."""
     part = partition(model)
-    out, sizes = [], {}
+    out, sizes, contact = [], {}, ContactOperator.of(model, part)
     for k, h in enumerate(se.harmonics):
         K, M, keep, independent = coupled_harmonic(model, split, se, k)
         p = np.searchsorted(keep, np.searchsorted(independent, part.physical))
         interior = np.setdiff1d(np.arange(K.shape[0]), p)
         cb = condense(K, M, p, interior, n_if + n_fi)
-        B, response = contact_operator(model, part, cb.K.shape[0], float(se.sigma[k]))
         out.append(ReducedHarmonic(harmonic=int(h), nd=nodal_diameter(int(h), model.n_sectors, engine_order),
                                    sigma=float(se.sigma[k]), K=cb.K, M=cb.M, n_physical=len(p),
-                                   n_if=n_if, n_fi=n_fi, size_mead=K.shape[0], B=B))
+                                   n_if=n_if, n_fi=n_fi, size_mead=K.shape[0],
+                                   B=contact.at(float(se.sigma[k]), cb.K.shape[0])))
         sizes = {"full": len(part.free), "craig_bampton": K.shape[0], "mead": K.shape[0],
                  "interface": cb.K.shape[0]}
-    return SubstructuredSector(harmonics=out, response_index=response,
+    return SubstructuredSector(harmonics=out, response_index=contact.response_index,
                                n_sectors=model.n_sectors, engine_order=engine_order, dof_counts=sizes)
 
 
